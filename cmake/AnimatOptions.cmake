@@ -1,0 +1,29 @@
+# Compiler flags for every animat target.
+#
+# -ffp-contract=off and no -ffast-math keep results bit-identical across
+# optimisation levels and machines of one architecture: every operation is
+# the IEEE operation written in the source, never fused or reassociated.
+
+add_compile_options(-Wall -Wextra -Wpedantic -ffp-contract=off
+                    -fno-fast-math)
+if(ANIMAT_WERROR)
+  add_compile_options(-Werror)
+endif()
+
+if(ANIMAT_ARCH AND CMAKE_SYSTEM_PROCESSOR MATCHES "x86_64|AMD64")
+  add_compile_options(-march=${ANIMAT_ARCH})
+endif()
+
+if(ANIMAT_SANITIZE)
+  add_compile_options(-fsanitize=${ANIMAT_SANITIZE} -fno-omit-frame-pointer
+                      -fno-sanitize-recover=all)
+  add_link_options(-fsanitize=${ANIMAT_SANITIZE})
+endif()
+
+# animat_library(NAME SOURCES... DEPS...) declares one layer of common/.
+function(animat_library name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_library(${name} STATIC ${ARG_SOURCES})
+  target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR})
+  target_link_libraries(${name} PUBLIC ${ARG_DEPS})
+endfunction()

@@ -1,0 +1,13 @@
+#include "common/base/fast_math.h"
+
+namespace animat {
+
+void ExpInPlace(double* values, size_t n) {
+  for (size_t i = 0; i < n; ++i) values[i] = Exp(values[i]);
+}
+
+void TanhInPlace(double* values, size_t n) {
+  for (size_t i = 0; i < n; ++i) values[i] = Tanh(values[i]);
+}
+
+}  // namespace animat

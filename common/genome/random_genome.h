@@ -1,0 +1,23 @@
+// Random genomes for the initial population (MODEL §9).
+//
+// Deterministic: the genome is a pure function of the stream's key.
+#ifndef ANIMAT_COMMON_GENOME_RANDOM_GENOME_H_
+#define ANIMAT_COMMON_GENOME_RANDOM_GENOME_H_
+
+#include "common/base/rng.h"
+#include "common/genome/genome.h"
+
+namespace animat {
+
+// `units` regulatory units of one P and one G element each (G_INTERNAL or
+// G_MORPHOGEN with equal chance), never split by an S element, plus one
+// S_IN per input channel and one S_OUT per output channel; the units and S
+// elements appear in a uniformly random order. Signs are +1 or -1 with
+// equal chance; coordinates are uniform in [0, coordinate_max)^2.
+// Precondition: units >= 0.
+Genome RandomGenome(RandomStream& stream, int units = 10,
+                    double coordinate_max = 10.0);
+
+}  // namespace animat
+
+#endif  // ANIMAT_COMMON_GENOME_RANDOM_GENOME_H_
