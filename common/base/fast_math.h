@@ -95,6 +95,62 @@ inline double Tanh(double x) {
   return std::copysign(em1 / (em1 + 2.0), x);
 }
 
+// sin(x) and cos(x) for |x| < 2^20 (accuracy degrades beyond; arguments
+// are cell orientations, a few hundred radians at most).
+inline void SinCos(double x, double* sin_out, double* cos_out) {
+  using namespace fast_math_internal;
+  // pi/2 in three parts of 33, 33 and 53 bits (fdlibm): q * part is exact
+  // for |q| < 2^20.
+  constexpr double kTwoOverPi = 6.36619772367581382433e-01;
+  constexpr double kPio2_1 = 1.57079632673412561417e+00;
+  constexpr double kPio2_2 = 6.07710050630396597660e-11;
+  constexpr double kPio2_2t = 2.02226624879595063154e-21;
+  const double t = x * kTwoOverPi + kShifter;
+  const double q = t - kShifter;
+  const uint64_t quadrant = std::bit_cast<uint64_t>(t) & 3u;
+  const double r = ((x - q * kPio2_1) - q * kPio2_2) - q * kPio2_2t;
+  const double r2 = r * r;
+  // Taylor series on |r| <= pi/4: sin to degree 17, cos to degree 18
+  // (truncation below 1e-19).
+  double s = -1.0 / 355687428096000.0;          // -1/17!
+  s = 1.0 / 1307674368000.0 + r2 * s;           //  1/15!
+  s = -1.0 / 6227020800.0 + r2 * s;             // -1/13!
+  s = 1.0 / 39916800.0 + r2 * s;                //  1/11!
+  s = -1.0 / 362880.0 + r2 * s;                 // -1/9!
+  s = 1.0 / 5040.0 + r2 * s;                    //  1/7!
+  s = -1.0 / 120.0 + r2 * s;                    // -1/5!
+  s = 1.0 / 6.0 + r2 * s;                       //  1/3!
+  const double sin_r = r - r * r2 * s;
+  double c = 1.0 / 6402373705728000.0;          //  1/18!
+  c = -1.0 / 20922789888000.0 + r2 * c;         // -1/16!
+  c = 1.0 / 87178291200.0 + r2 * c;             //  1/14!
+  c = -1.0 / 479001600.0 + r2 * c;              // -1/12!
+  c = 1.0 / 3628800.0 + r2 * c;                 //  1/10!
+  c = -1.0 / 40320.0 + r2 * c;                  // -1/8!
+  c = 1.0 / 720.0 + r2 * c;                     //  1/6!
+  c = -1.0 / 24.0 + r2 * c;                     // -1/4!
+  c = 0.5 + r2 * c;                             //  1/2! (sign folded)
+  const double cos_r = 1.0 - r2 * c;
+  switch (quadrant) {
+    case 0:
+      *sin_out = sin_r;
+      *cos_out = cos_r;
+      break;
+    case 1:
+      *sin_out = cos_r;
+      *cos_out = -sin_r;
+      break;
+    case 2:
+      *sin_out = -sin_r;
+      *cos_out = -cos_r;
+      break;
+    default:
+      *sin_out = -cos_r;
+      *cos_out = sin_r;
+      break;
+  }
+}
+
 // In-place array forms (the loop vectorises; results equal the scalar
 // forms bit for bit).
 void ExpInPlace(double* values, size_t n);

@@ -12,6 +12,10 @@
 
 namespace animat {
 
+// Points closer than this are coincident: development separates them and
+// a body that still has them fails (MODEL §4, §6).
+inline constexpr double kCoincidentDistance = 1e-9;
+
 // An undirected edge between point indices a < b.
 struct IndexEdge {
   int a = 0;

@@ -1,0 +1,28 @@
+// animat: develop, simulate and inspect animats (docs/formats.md).
+#include <iostream>
+#include <map>
+#include <string>
+
+#include "cli/commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "animat: evolve soft-bodied, brainless animats (see README.md and "
+      "docs/formats.md)"};
+  app.require_subcommand(1);
+  std::map<std::string, animat::cli::Command> commands;
+  commands["random-genome"] = animat::cli::AddRandomGenomeCommand(app);
+  commands["grn"] = animat::cli::AddGrnCommand(app);
+  commands["simulate"] = animat::cli::AddSimulateCommand(app);
+  commands["scene"] = animat::cli::AddSceneCommand(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+  for (const CLI::App* sub : app.get_subcommands()) {
+    return commands.at(sub->get_name())();
+  }
+  return 2;
+}

@@ -1,0 +1,127 @@
+// animat scene --scene FILE --steps N [--trace FILE] [--every K]
+#include <cinttypes>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "animat/v1/trace.pb.h"
+#include "cli/commands.h"
+#include "common/base/hash.h"
+#include "common/evaluation/model_config.h"
+#include "common/evaluation/trace_recorder.h"
+#include "common/io/proto_file.h"
+#include "common/physics/scene.h"
+#include "common/physics/soft_body.h"
+
+namespace animat::cli {
+namespace {
+
+struct Options {
+  std::string scene;
+  std::string trace;
+  int steps = 0;
+  int every = 1;
+};
+
+double KineticEnergy(const MotionState& state, double mass) {
+  double energy = 0.0;
+  for (const Vec2& v : state.velocity) energy += 0.5 * mass * Dot(v, v);
+  return energy;
+}
+
+int Run(const Options& o) {
+  v1::Scene message;
+  Status status = ReadProtoFile(o.scene, &message);
+  if (!status.ok()) return Fail(status.message());
+  Result<Scene> scene = SceneFromProto(message);
+  if (!scene.ok()) return Fail(scene.status().WithPrefix(o.scene).message());
+  if (!o.trace.empty()) {
+    Result<ProtoFormat> format = ProtoFormatForPath(o.trace);
+    if (!format.ok()) return Fail(format.status().message());
+  }
+
+  const EvaluationParams checks;  // Bound and interval of MODEL §8.
+  SoftBody body(scene->body, scene->params);
+  body.SetActuation(scene->expand, scene->contract);
+  MotionState& state = scene->state;
+  v1::Trace trace;
+  *trace.mutable_config()->mutable_physics() =
+      PhysicsParamsToProto(scene->params);
+  *trace.mutable_body() = message.body();
+  const Vec2 start = CentreOfMass(state);
+  const bool tracing = !o.trace.empty();
+  if (tracing) {
+    AppendFrame(MotionPhase::kMotion, 0, state, scene->expand,
+                scene->contract, &trace);
+  }
+  std::string problem;
+  int done = 0;
+  for (int step = 1; step <= o.steps; ++step) {
+    body.Step(&state);
+    done = step;
+    if (step % checks.check_interval == 0 || step == o.steps) {
+      problem = CheckState(state, checks.max_coordinate);
+      if (!problem.empty()) {
+        problem += " at step " + std::to_string(step);
+        break;
+      }
+    }
+    if (tracing && (step % o.every == 0 || step == o.steps)) {
+      AppendFrame(MotionPhase::kMotion, step, state, scene->expand,
+                  scene->contract, &trace);
+    }
+  }
+
+  StateHash hash;
+  for (size_t i = 0; i < state.position.size(); ++i) {
+    hash.AddDouble(state.position[i].x);
+    hash.AddDouble(state.position[i].y);
+    hash.AddDouble(state.velocity[i].x);
+    hash.AddDouble(state.velocity[i].y);
+  }
+  v1::EvaluationResult* result = trace.mutable_result();
+  result->set_status(problem.empty() ? v1::EvaluationResult::OK
+                                     : v1::EvaluationResult::NUMERICAL_FAILURE);
+  result->set_reason(problem);
+  result->set_cells(body.nodes());
+  result->set_steps(done);
+  result->set_state_hash(hash.value());
+  if (tracing) {
+    status = WriteProtoFile(o.trace, trace);
+    if (!status.ok()) return Fail(status.message());
+  }
+
+  const Vec2 com = CentreOfMass(state);
+  std::printf("status: %s\n", problem.empty() ? "ok" : "numerical_failure");
+  if (!problem.empty()) std::printf("reason: %s\n", problem.c_str());
+  std::printf("steps: %d\n", done);
+  std::printf("centre_of_mass: %.17g %.17g\n", com.x, com.y);
+  std::printf("displacement: %.17g\n", Length(com - start));
+  std::printf("kinetic_energy: %.17g\n",
+              KineticEnergy(state, scene->params.mass));
+  std::printf("state_hash: %016" PRIx64 "\n", hash.value());
+  return 0;
+}
+
+}  // namespace
+
+Command AddSceneCommand(CLI::App& app) {
+  auto options = std::make_shared<Options>();
+  CLI::App* sub = app.add_subcommand(
+      "scene",
+      "Run the motion physics alone on a body from a file, with constant "
+      "actuation (docs/formats.md)");
+  sub->add_option("--scene", options->scene, "Scene file (.json, .txtpb)")
+      ->required();
+  sub->add_option("--steps", options->steps, "Steps to run")
+      ->check(CLI::Range(0, 100000000))
+      ->required();
+  sub->add_option("--trace", options->trace,
+                  "Write the frames (.json, .txtpb, .binpb)");
+  sub->add_option("--every", options->every, "Trace every K-th step")
+      ->check(CLI::Range(1, 100000000))
+      ->capture_default_str();
+  return [options] { return Run(*options); };
+}
+
+}  // namespace animat::cli

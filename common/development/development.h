@@ -1,0 +1,85 @@
+// Development of an embryo from one cell (MODEL §4).
+//
+// A Development owns the embryo, its network state and its morphogen
+// field; the evaluation continues with them after development (signals,
+// history and levels carry on into motion). It keeps a reference to the
+// Network, which must outlive it. Not thread-safe; one per evaluation.
+#ifndef ANIMAT_COMMON_DEVELOPMENT_DEVELOPMENT_H_
+#define ANIMAT_COMMON_DEVELOPMENT_DEVELOPMENT_H_
+
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "common/base/vec2.h"
+#include "common/development/development_params.h"
+#include "common/development/signals.h"
+#include "common/geometry/gabriel.h"
+#include "common/grn/grn_batch.h"
+#include "common/grn/network.h"
+
+namespace animat {
+
+struct Embryo {
+  std::vector<Vec2> position;  // Cell centres (radii).
+  std::vector<double> radius;  // Radii (default cell radius 1).
+  std::vector<double> angle;   // Orientation (radians).
+  int cells() const { return static_cast<int>(position.size()); }
+};
+
+enum class DevelopmentStatus {
+  kOk,
+  kLateDivision,      // A division at or after last_division_step.
+  kTooFewCells,       // Fewer than min_cells at the end.
+  kNumericalFailure,  // A non-finite position.
+};
+
+struct DevelopmentOutcome {
+  DevelopmentStatus status = DevelopmentStatus::kOk;
+  std::string reason;       // Why, when status is not kOk.
+  int steps_run = 0;        // Development steps completed.
+  int divisions = 0;        // Divisions that happened.
+  int last_division = -1;   // Step of the last division, -1 if none.
+};
+
+class Development {
+ public:
+  Development(const Network& network, const GrnParams& grn_params,
+              const DevelopmentParams& params,
+              const SignalParams& signal_params);
+
+  // Called after each step's mechanics with the step number (0-based).
+  using Observer = std::function<void(int step, const Development&)>;
+
+  // Runs development from the zygote. Stops at once on a late division
+  // (its status takes priority over too few cells). Call once.
+  DevelopmentOutcome Run(const Observer& observer = nullptr);
+
+  const Embryo& embryo() const { return embryo_; }
+  GrnBatch& grn() { return grn_; }
+  const GrnBatch& grn() const { return grn_; }
+  MorphogenField& field() { return field_; }
+  const MorphogenField& field() const { return field_; }
+  const std::array<Vec2, 3>& maternal_sources() const { return sources_; }
+  const DevelopmentParams& params() const { return params_; }
+  const SignalParams& signal_params() const { return signal_params_; }
+
+ private:
+  // Divisions of step `step`; returns the number that happened.
+  int Divide(int step, int* late_cell);
+  void Mechanics();
+
+  const Network& network_;
+  DevelopmentParams params_;
+  SignalParams signal_params_;
+  std::array<Vec2, 3> sources_;
+  Embryo embryo_;
+  GrnBatch grn_;
+  MorphogenField field_;
+  std::vector<Vec2> force_;  // Scratch for the mechanics.
+};
+
+}  // namespace animat
+
+#endif  // ANIMAT_COMMON_DEVELOPMENT_DEVELOPMENT_H_

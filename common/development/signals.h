@@ -1,0 +1,84 @@
+// Maternal and endogenous morphogens (MODEL §5).
+//
+// MorphogenField keeps, for every cell, the recent history of its
+// morphogen-making nodes' levels, and turns it into the signal M each cell
+// sees through the distance kernel K(d) = exp(-d / kernel_length) and the
+// delay tau(d) = min(max_delay, floor(d / delay_length + 0.5)) steps. Not
+// thread-safe; one field per evaluation.
+#ifndef ANIMAT_COMMON_DEVELOPMENT_SIGNALS_H_
+#define ANIMAT_COMMON_DEVELOPMENT_SIGNALS_H_
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "common/base/vec2.h"
+#include "common/development/development_params.h"
+#include "common/genome/genome.h"
+#include "common/grn/grn_batch.h"
+
+namespace animat {
+
+// The three maternal sources: distance maternal_distance from the origin at
+// angles 90 + 120 k degrees.
+std::array<Vec2, 3> MaternalSources(const SignalParams& params);
+
+// Input channel values at a position: exp(-|p - s_k| / maternal_length)
+// for the three maternal channels, then UNIFORM = 1.
+std::array<double, kInputChannels> InputValuesAt(
+    Vec2 p, const std::array<Vec2, 3>& sources, const SignalParams& params);
+
+class MorphogenField {
+ public:
+  // History length in steps (a power of two above the longest delay).
+  static constexpr int kHistory = 128;
+
+  // `morphogens`: the network's morphogen-making nodes; `capacity`: most
+  // cells.
+  MorphogenField(int morphogens, int capacity, const SignalParams& params);
+
+  int cells() const { return cells_; }
+  int morphogens() const { return morphogens_; }
+
+  // Adds a cell whose history is all 0 / a copy of the mother's.
+  void AddCell();
+  void CopyCell(int mother);
+
+  // Recomputes kernels and delays from the cells' positions (one per
+  // cell, in cell order). K(0) = 1 and delay 0 for a cell and itself.
+  void SetGeometry(std::span<const Vec2> positions);
+
+  // Stores every cell's morphogen-node levels in `grn` as its values
+  // entering step `step`.
+  void Record(int step, const GrnBatch& grn);
+
+  // Writes M_j(i) = min(1, sum over cells k, in index order, of
+  // K(d_ik) * L_j(k, step - tau(d_ik))) into grn's signal rows; history
+  // before step 0 reads 0.
+  void Apply(int step, GrnBatch* grn) const;
+
+  double kernel(int i, int k) const { return kernel_[i * capacity_ + k]; }
+  int delay(int i, int k) const { return delay_[i * capacity_ + k]; }
+
+ private:
+  double* slot(int step, int cell) {
+    return &history_[((static_cast<size_t>(step) & (kHistory - 1)) *
+                          capacity_ +
+                      cell) *
+                     morphogens_];
+  }
+
+  int morphogens_;
+  int capacity_;
+  int cells_ = 0;
+  SignalParams params_;
+  std::vector<double> kernel_;    // capacity x capacity
+  std::vector<uint8_t> delay_;    // capacity x capacity
+  std::vector<double> history_;   // [slot][cell][morphogen]
+  mutable std::vector<double> sum_;  // scratch, one per morphogen
+};
+
+}  // namespace animat
+
+#endif  // ANIMAT_COMMON_DEVELOPMENT_SIGNALS_H_

@@ -1,0 +1,223 @@
+#include "common/evaluation/evaluator.h"
+
+#include <cmath>
+#include <vector>
+
+#include "common/base/hash.h"
+#include "common/development/signals.h"
+#include "common/grn/network.h"
+
+namespace animat {
+namespace {
+
+EvaluationResult Failure(EvalStatus status, std::string reason, int cells,
+                         int64_t steps) {
+  EvaluationResult result;
+  result.status = status;
+  result.reason = std::move(reason);
+  result.cells = cells;
+  result.steps = steps;
+  return result;
+}
+
+// Each cell's EXPAND and CONTRACT values.
+void ReadActuation(const GrnBatch& grn, std::vector<double>* expand,
+                   std::vector<double>* contract) {
+  for (int cell = 0; cell < grn.cells(); ++cell) {
+    (*expand)[cell] = grn.Output(cell, OutputChannel::kExpand);
+    (*contract)[cell] = grn.Output(cell, OutputChannel::kContract);
+  }
+}
+
+uint64_t HashFinalState(const MotionState& state, const GrnBatch& grn) {
+  StateHash hash;
+  for (size_t i = 0; i < state.position.size(); ++i) {
+    hash.AddDouble(state.position[i].x);
+    hash.AddDouble(state.position[i].y);
+    hash.AddDouble(state.velocity[i].x);
+    hash.AddDouble(state.velocity[i].y);
+  }
+  for (int node = 0; node < grn.network().node_count(); ++node) {
+    for (int cell = 0; cell < grn.cells(); ++cell) {
+      hash.AddDouble(grn.level(cell, node));
+    }
+  }
+  return hash.value();
+}
+
+bool CheckDue(int step, int last, int interval) {
+  return step % interval == 0 || step == last;
+}
+
+}  // namespace
+
+const char* EvalStatusName(EvalStatus status) {
+  switch (status) {
+    case EvalStatus::kOk:
+      return "ok";
+    case EvalStatus::kNonViable:
+      return "non_viable";
+    case EvalStatus::kLateDivision:
+      return "late_division";
+    case EvalStatus::kTooFewCells:
+      return "too_few_cells";
+    case EvalStatus::kDegenerateBody:
+      return "degenerate_body";
+    case EvalStatus::kNumericalFailure:
+      return "numerical_failure";
+    case EvalStatus::kInvalidGenome:
+      return "invalid_genome";
+  }
+  return "?";
+}
+
+v1::EvaluationResult EvaluationResultToProto(const EvaluationResult& r) {
+  v1::EvaluationResult m;
+  m.set_status(static_cast<v1::EvaluationResult::Status>(
+      static_cast<int>(r.status) + v1::EvaluationResult::OK));
+  m.set_reason(r.reason);
+  if (r.fitness) m.set_fitness(*r.fitness);
+  m.set_cells(r.cells);
+  m.set_steps(r.steps);
+  m.set_state_hash(r.state_hash);
+  return m;
+}
+
+EvaluationResult Evaluate(const Genome& genome, const ModelConfig& config,
+                          EvaluationObserver* observer) {
+  Status valid = ValidateGenome(genome);
+  if (!valid.ok()) {
+    return Failure(EvalStatus::kInvalidGenome, valid.message(), 0, 0);
+  }
+  const Network network = Network::Build(genome, config.grn);
+  const Viability viability = network.CheckViability();
+  if (!viability.viable) {
+    return Failure(EvalStatus::kNonViable, viability.reason, 0, 0);
+  }
+
+  // Development (MODEL §4, §5).
+  Development development(network, config.grn, config.development,
+                          config.signals);
+  Development::Observer on_step;
+  if (observer) {
+    on_step = [observer](int step, const Development& d) {
+      observer->OnDevelopmentStep(step, d);
+    };
+  }
+  const DevelopmentOutcome outcome = development.Run(on_step);
+  const Embryo& embryo = development.embryo();
+  const int cells = embryo.cells();
+  int64_t steps = outcome.steps_run;
+  switch (outcome.status) {
+    case DevelopmentStatus::kOk:
+      break;
+    case DevelopmentStatus::kLateDivision:
+      return Failure(EvalStatus::kLateDivision, outcome.reason, cells, steps);
+    case DevelopmentStatus::kTooFewCells:
+      return Failure(EvalStatus::kTooFewCells, outcome.reason, cells, steps);
+    case DevelopmentStatus::kNumericalFailure:
+      return Failure(EvalStatus::kNumericalFailure, outcome.reason, cells,
+                     steps);
+  }
+
+  // Body (MODEL §6).
+  Result<Body> body = BuildBody(embryo.position);
+  if (!body.ok()) {
+    return Failure(EvalStatus::kDegenerateBody,
+                   "degenerate body: " + body.status().message(), cells,
+                   steps);
+  }
+
+  // Positional information frozen at its end-of-development values (§5).
+  GrnBatch& grn = development.grn();
+  MorphogenField& field = development.field();
+  for (int cell = 0; cell < cells; ++cell) {
+    grn.SetInputs(cell, InputValuesAt(embryo.position[cell],
+                                      development.maternal_sources(),
+                                      config.signals));
+  }
+  grn.FreezeInputs();
+  const bool signalling = field.morphogens() > 0;
+  if (signalling) field.SetGeometry(embryo.position);
+
+  std::vector<double> expand(cells), contract(cells);
+  ReadActuation(grn, &expand, &contract);
+  SoftBody soft_body(*body, config.physics);
+  soft_body.SetActuation(expand, contract);
+  MotionState state;
+  state.position = body->position;
+  state.velocity.assign(cells, Vec2{});
+  if (observer) {
+    observer->OnBody(*body, expand, contract);
+    observer->OnMotionStep(MotionPhase::kEquilibration, 0, state, expand,
+                           contract);
+  }
+
+  // Equilibration: network stopped, velocities damped (§8).
+  const EvaluationParams& ev = config.evaluation;
+  for (int step = 1; step <= ev.equilibration_steps; ++step) {
+    soft_body.Step(&state);
+    for (Vec2& v : state.velocity) v = v * ev.equilibration_damping;
+    ++steps;
+    if (CheckDue(step, ev.equilibration_steps, ev.check_interval)) {
+      const std::string problem = CheckState(state, ev.max_coordinate);
+      if (!problem.empty()) {
+        return Failure(EvalStatus::kNumericalFailure,
+                       problem + " at equilibration step " +
+                           std::to_string(step),
+                       cells, steps);
+      }
+    }
+    if (observer) {
+      observer->OnMotionStep(MotionPhase::kEquilibration, step, state, expand,
+                             contract);
+    }
+  }
+
+  // Motion: network running (§7, §8).
+  for (Vec2& v : state.velocity) v = Vec2{};
+  const Vec2 start = CentreOfMass(state);
+  if (observer) {
+    observer->OnMotionStep(MotionPhase::kMotion, 0, state, expand, contract);
+  }
+  const int history_base = config.development.steps;
+  for (int step = 1; step <= ev.motion_steps; ++step) {
+    if (signalling) {
+      const int signal_step = history_base + step - 1;
+      field.Record(signal_step, grn);
+      field.Apply(signal_step, &grn);
+    }
+    grn.Step();
+    ReadActuation(grn, &expand, &contract);
+    soft_body.SetActuation(expand, contract);
+    soft_body.Step(&state);
+    ++steps;
+    if (CheckDue(step, ev.motion_steps, ev.check_interval)) {
+      const std::string problem = CheckState(state, ev.max_coordinate);
+      if (!problem.empty()) {
+        return Failure(EvalStatus::kNumericalFailure,
+                       problem + " at motion step " + std::to_string(step),
+                       cells, steps);
+      }
+    }
+    if (observer) {
+      observer->OnMotionStep(MotionPhase::kMotion, step, state, expand,
+                             contract);
+    }
+  }
+
+  const double fitness = Length(CentreOfMass(state) - start);
+  if (!std::isfinite(fitness)) {
+    return Failure(EvalStatus::kNumericalFailure, "non-finite fitness", cells,
+                   steps);
+  }
+  EvaluationResult result;
+  result.status = EvalStatus::kOk;
+  result.fitness = fitness;
+  result.cells = cells;
+  result.steps = steps;
+  result.state_hash = HashFinalState(state, grn);
+  return result;
+}
+
+}  // namespace animat

@@ -1,0 +1,78 @@
+#include "common/evaluation/model_config.h"
+
+#include "common/base/validate.h"
+#include "common/io/proto_file.h"
+
+namespace animat {
+namespace {
+
+Status EvaluationParamsFromProto(const v1::EvaluationConfig& m,
+                                 EvaluationParams* params) {
+  EvaluationParams p = *params;
+  if (m.has_equilibration_steps()) {
+    p.equilibration_steps = m.equilibration_steps();
+  }
+  if (m.has_equilibration_damping()) {
+    p.equilibration_damping = m.equilibration_damping();
+  }
+  if (m.has_motion_steps()) p.motion_steps = m.motion_steps();
+  if (m.has_max_coordinate()) p.max_coordinate = m.max_coordinate();
+  if (m.has_check_interval()) p.check_interval = m.check_interval();
+  Status status = FirstError({
+      RequireIntInRange("evaluation.equilibration_steps",
+                        p.equilibration_steps, 0, 100000000),
+      RequireInRange("evaluation.equilibration_damping",
+                     p.equilibration_damping, 0.0, 1.0),
+      RequireIntInRange("evaluation.motion_steps", p.motion_steps, 0,
+                        100000000),
+      RequirePositive("evaluation.max_coordinate", p.max_coordinate),
+      RequireIntInRange("evaluation.check_interval", p.check_interval, 1,
+                        100000000),
+  });
+  if (!status.ok()) return status;
+  *params = p;
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status ConfigFromProto(const v1::Config& message, ModelConfig* config) {
+  ModelConfig c = *config;
+  Status status = FirstError({
+      GrnParamsFromProto(message.grn(), &c.grn),
+      DevelopmentParamsFromProto(message.development(), &c.development),
+      SignalParamsFromProto(message.signals(), &c.signals),
+      PhysicsParamsFromProto(message.physics(), &c.physics),
+      EvaluationParamsFromProto(message.evaluation(), &c.evaluation),
+  });
+  if (!status.ok()) return status;
+  *config = c;
+  return Status::Ok();
+}
+
+v1::Config ConfigToProto(const ModelConfig& c) {
+  v1::Config m;
+  *m.mutable_grn() = GrnParamsToProto(c.grn);
+  *m.mutable_development() = DevelopmentParamsToProto(c.development);
+  *m.mutable_signals() = SignalParamsToProto(c.signals);
+  *m.mutable_physics() = PhysicsParamsToProto(c.physics);
+  v1::EvaluationConfig* e = m.mutable_evaluation();
+  e->set_equilibration_steps(c.evaluation.equilibration_steps);
+  e->set_equilibration_damping(c.evaluation.equilibration_damping);
+  e->set_motion_steps(c.evaluation.motion_steps);
+  e->set_max_coordinate(c.evaluation.max_coordinate);
+  e->set_check_interval(c.evaluation.check_interval);
+  return m;
+}
+
+Result<ModelConfig> ReadConfigFile(const std::string& path) {
+  v1::Config message;
+  Status status = ReadProtoFile(path, &message);
+  if (!status.ok()) return status;
+  ModelConfig config;
+  status = ConfigFromProto(message, &config);
+  if (!status.ok()) return status.WithPrefix(path);
+  return config;
+}
+
+}  // namespace animat

@@ -1,0 +1,47 @@
+// The whole model configuration (animat.v1.Config) as plain structs with
+// MODEL.md's defaults, and its conversion from and to protobuf.
+#ifndef ANIMAT_COMMON_EVALUATION_MODEL_CONFIG_H_
+#define ANIMAT_COMMON_EVALUATION_MODEL_CONFIG_H_
+
+#include <string>
+
+#include "animat/v1/config.pb.h"
+#include "common/base/status.h"
+#include "common/development/development_params.h"
+#include "common/grn/grn_params.h"
+#include "common/physics/physics_params.h"
+
+namespace animat {
+
+// The evaluation schedule and failure checks (MODEL §8).
+struct EvaluationParams {
+  int equilibration_steps = 200;        // Network stopped.
+  double equilibration_damping = 0.9;   // v *= this after each such step.
+  int motion_steps = 6000;              // Network running.
+  double max_coordinate = 1e6;          // Beyond: numerical failure.
+  int check_interval = 100;             // Steps between state checks.
+};
+
+struct ModelConfig {
+  GrnParams grn;
+  DevelopmentParams development;
+  SignalParams signals;
+  PhysicsParams physics;
+  EvaluationParams evaluation;
+};
+
+// Starts from `*config` (usually the defaults), overwrites the fields
+// present in `message`, and checks every value. On error `*config` is
+// unchanged and the message names the field ("physics.dt: must be ...").
+Status ConfigFromProto(const v1::Config& message, ModelConfig* config);
+
+// Every field set, defaults included.
+v1::Config ConfigToProto(const ModelConfig& config);
+
+// Reads a configuration file (.json or .txtpb) over the defaults. Errors
+// start with the path.
+Result<ModelConfig> ReadConfigFile(const std::string& path);
+
+}  // namespace animat
+
+#endif  // ANIMAT_COMMON_EVALUATION_MODEL_CONFIG_H_

@@ -1,0 +1,85 @@
+// The network dynamics of every cell of an embryo, advanced together
+// (MODEL §3).
+//
+// State is stored node-major with the cells of one node contiguous, so one
+// weight updates all cells in a vectorisable loop; results do not depend on
+// vectorisation. The batch keeps a reference to its Network, which must
+// outlive it. Not thread-safe; one batch per evaluation.
+#ifndef ANIMAT_COMMON_GRN_GRN_BATCH_H_
+#define ANIMAT_COMMON_GRN_GRN_BATCH_H_
+
+#include <array>
+#include <vector>
+
+#include "common/genome/genome.h"
+#include "common/grn/grn_params.h"
+#include "common/grn/network.h"
+
+namespace animat {
+
+class GrnBatch {
+ public:
+  // Holds up to `capacity` cells (> 0).
+  GrnBatch(const Network& network, const GrnParams& params, int capacity);
+
+  int cells() const { return cells_; }
+  int capacity() const { return capacity_; }
+  const Network& network() const { return *network_; }
+
+  // Adds a cell with every level, input and signal 0; returns its index.
+  // Precondition: cells() < capacity().
+  int AddCell();
+  // Adds a copy of `mother` (levels, inputs, signals); returns its index.
+  int CopyCell(int mother);
+
+  // Sets the cell's input channel values (MATERNAL_0..2, UNIFORM). Input
+  // nodes hold the value of their channel as their level.
+  void SetInputs(int cell, const std::array<double, kInputChannels>& values);
+  // Morphogen signals M, one row of capacity() per morphogen (cells
+  // contiguous): set them before Step().
+  double* signal_row(int morphogen) {
+    return &signals_[static_cast<size_t>(morphogen) * capacity_];
+  }
+  // Sets every cell's signals to its own levels, min(1, L) (a cell alone:
+  // K(0) = 1, no delay).
+  void SetOwnSignals();
+
+  // Precomputes the input nodes' contribution to every activation; until
+  // the next AddCell, CopyCell or SetInputs, Step() reuses it. Results are
+  // bit-identical with and without freezing.
+  void FreezeInputs();
+
+  // One synchronous update of every cell:
+  //   L <- clamp(L + (tanh(A / 2) - L) * dt, 0, 1).
+  // A NaN level stays NaN (never clamped to a number).
+  void Step();
+
+  double level(int cell, int node) const {
+    return levels_[static_cast<size_t>(node) * capacity_ + cell];
+  }
+  // Levels of one node for all cells (cells contiguous).
+  const double* level_row(int node) const {
+    return &levels_[static_cast<size_t>(node) * capacity_];
+  }
+  // The channel's value: the maximum level of its output nodes, 0 if none.
+  double Output(int cell, OutputChannel channel) const;
+  // Sets every output node of the channel to 0 in this cell.
+  void ResetOutput(int cell, OutputChannel channel);
+
+ private:
+  void AccumulateSources(int first, int last);
+
+  const Network* network_;
+  double dt_;
+  int capacity_;
+  int cells_ = 0;
+  bool frozen_ = false;
+  std::vector<double> levels_;         // node-major, capacity per node
+  std::vector<double> signals_;        // morphogen-major
+  std::vector<double> activation_;     // target-major
+  std::vector<double> input_partial_;  // target-major, when frozen
+};
+
+}  // namespace animat
+
+#endif  // ANIMAT_COMMON_GRN_GRN_BATCH_H_

@@ -1,0 +1,26 @@
+// Constants of the genome-to-network map and the network dynamics
+// (MODEL §2, §3), and their configuration message.
+#ifndef ANIMAT_COMMON_GRN_GRN_PARAMS_H_
+#define ANIMAT_COMMON_GRN_GRN_PARAMS_H_
+
+#include "animat/v1/config.pb.h"
+#include "common/base/status.h"
+
+namespace animat {
+
+struct GrnParams {
+  double weight_max = 10.0;   // Weight at distance 0.
+  double decay_length = 1.0;  // w = weight_max * exp(-d / decay_length).
+  double cutoff = 3.0;        // Pairs with d >= cutoff do not bind.
+  double dt = 0.05;           // Concentration update step.
+};
+
+// Overwrites the fields present in `message` after checking them; on error
+// `params` is unchanged and the message names the field ("grn.dt: ...").
+Status GrnParamsFromProto(const v1::GrnConfig& message, GrnParams* params);
+// Every field set.
+v1::GrnConfig GrnParamsToProto(const GrnParams& params);
+
+}  // namespace animat
+
+#endif  // ANIMAT_COMMON_GRN_GRN_PARAMS_H_

@@ -1,0 +1,230 @@
+#include "common/grn/network.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/base/fast_math.h"
+
+namespace animat {
+namespace {
+
+double Distance(const Element& a, const Element& b) {
+  const double dx = a.x - b.x;
+  const double dy = a.y - b.y;
+  return std::sqrt(dx * dx + dy * dy);
+}
+
+// MODEL §2: G factors bind P and S_OUT regions; S_IN factors bind P only.
+bool Compatible(const Element& factor, const Element& region) {
+  if (factor.IsG()) return true;
+  return factor.type == ElementType::kSIn && region.type == ElementType::kP;
+}
+
+struct Row {
+  SourceKind kind;
+  int node;
+  std::vector<int> targets;
+  std::vector<double> values;
+};
+
+}  // namespace
+
+double Affinity(const Element& factor, const Element& region,
+                const GrnParams& params) {
+  const double d = Distance(factor, region);
+  if (!(d < params.cutoff)) return 0.0;
+  return static_cast<double>(factor.sign * region.sign) * params.weight_max *
+         Exp(-d / params.decay_length);
+}
+
+bool Binds(const Element& factor, const Element& region,
+           const GrnParams& params) {
+  return Distance(factor, region) < params.cutoff;
+}
+
+Network Network::Build(const Genome& genome, const GrnParams& params) {
+  Network net;
+  const std::vector<Element>& el = genome.elements;
+  const int n = static_cast<int>(el.size());
+
+  // Parse into nodes (MODEL §2).
+  int i = 0;
+  while (i < n) {
+    const ElementType type = el[i].type;
+    if (type == ElementType::kP) {
+      int j = i;
+      while (j < n && el[j].type == ElementType::kP) ++j;
+      int k = j;
+      while (k < n && el[k].IsG()) ++k;
+      if (k > j) {
+        Node node;
+        node.kind = NodeKind::kUnit;
+        node.first_element = i;
+        for (int p = i; p < j; ++p) node.regions.push_back(p);
+        for (int g = j; g < k; ++g) {
+          node.factors.push_back(g);
+          if (el[g].type == ElementType::kGInternal) node.makes_internal = true;
+          if (el[g].type == ElementType::kGMorphogen) {
+            node.makes_morphogen = true;
+          }
+        }
+        net.nodes_.push_back(std::move(node));
+      }
+      i = k;  // A P run with no G after it is ignored.
+    } else if (el[i].IsG()) {
+      while (i < n && el[i].IsG()) ++i;  // G run with no P before it.
+    } else {
+      Node node;
+      node.first_element = i;
+      node.channel = el[i].channel;
+      if (type == ElementType::kSIn) {
+        node.kind = NodeKind::kInput;
+        node.factors.push_back(i);
+      } else {
+        node.kind = NodeKind::kOutput;
+        node.regions.push_back(i);
+      }
+      net.nodes_.push_back(std::move(node));
+      ++i;
+    }
+  }
+
+  const int nodes = net.node_count();
+  for (int v = 0; v < nodes; ++v) {
+    Node& node = net.nodes_[v];
+    if (node.makes_morphogen) {
+      node.morphogen = static_cast<int>(net.morphogen_nodes_.size());
+      net.morphogen_nodes_.push_back(v);
+    }
+    if (node.kind == NodeKind::kInput) net.input_nodes_[node.channel].push_back(v);
+    if (node.kind == NodeKind::kOutput) {
+      net.output_nodes_[node.channel].push_back(v);
+    }
+    if (node.kind != NodeKind::kInput) net.targets_.push_back(v);
+  }
+
+  // Weights and the binding graph, one source node at a time.
+  std::vector<Row> input_rows, level_rows, morphogen_rows;
+  net.successors_.assign(nodes, {});
+  for (int s = 0; s < nodes; ++s) {
+    const Node& source = net.nodes_[s];
+    if (source.factors.empty()) continue;
+    Row input{SourceKind::kInput, s, {}, {}};
+    Row level{SourceKind::kLevel, s, {}, {}};
+    Row morphogen{SourceKind::kMorphogen, s, {}, {}};
+    for (size_t t = 0; t < net.targets_.size(); ++t) {
+      const int u = net.targets_[t];
+      bool bound = false;
+      double w_input = 0.0, w_level = 0.0, w_morphogen = 0.0;
+      for (int r : net.nodes_[u].regions) {
+        for (int f : source.factors) {
+          if (!Compatible(el[f], el[r]) || !Binds(el[f], el[r], params)) {
+            continue;
+          }
+          bound = true;
+          const double w = Affinity(el[f], el[r], params);
+          switch (el[f].type) {
+            case ElementType::kSIn:
+              w_input += w;
+              break;
+            case ElementType::kGInternal:
+              w_level += w;
+              break;
+            default:
+              w_morphogen += w;
+              break;
+          }
+        }
+      }
+      if (bound) net.successors_[s].push_back(u);
+      const int target = static_cast<int>(t);
+      if (w_input != 0.0) {
+        input.targets.push_back(target);
+        input.values.push_back(w_input);
+      }
+      if (w_level != 0.0) {
+        level.targets.push_back(target);
+        level.values.push_back(w_level);
+      }
+      if (w_morphogen != 0.0) {
+        morphogen.targets.push_back(target);
+        morphogen.values.push_back(w_morphogen);
+      }
+    }
+    if (!input.targets.empty()) input_rows.push_back(std::move(input));
+    if (!level.targets.empty()) level_rows.push_back(std::move(level));
+    if (!morphogen.targets.empty()) {
+      morphogen_rows.push_back(std::move(morphogen));
+    }
+  }
+
+  net.row_begin_.push_back(0);
+  for (std::vector<Row>* group : {&input_rows, &level_rows, &morphogen_rows}) {
+    for (Row& row : *group) {
+      net.sources_.push_back({row.kind, row.node});
+      net.weight_target_.insert(net.weight_target_.end(), row.targets.begin(),
+                                row.targets.end());
+      net.weight_value_.insert(net.weight_value_.end(), row.values.begin(),
+                               row.values.end());
+      net.row_begin_.push_back(static_cast<int>(net.weight_target_.size()));
+    }
+  }
+  net.input_source_count_ = static_cast<int>(input_rows.size());
+  return net;
+}
+
+double Network::Weight(SourceKind kind, int from, int to) const {
+  for (size_t s = 0; s < sources_.size(); ++s) {
+    if (sources_[s].kind != kind || sources_[s].node != from) continue;
+    for (int k = row_begin_[s]; k < row_begin_[s + 1]; ++k) {
+      if (targets_[weight_target_[k]] == to) return weight_value_[k];
+    }
+  }
+  return 0.0;
+}
+
+Viability Network::CheckViability() const {
+  std::vector<bool> reached(nodes_.size(), false);
+  std::vector<int> stack;
+  for (int c = 0; c < kInputChannels; ++c) {
+    for (int v : input_nodes_[c]) {
+      reached[v] = true;
+      stack.push_back(v);
+    }
+  }
+  while (!stack.empty()) {
+    const int v = stack.back();
+    stack.pop_back();
+    for (int u : successors_[v]) {
+      if (!reached[u]) {
+        reached[u] = true;
+        stack.push_back(u);
+      }
+    }
+  }
+  auto any_reached = [&](int channel) {
+    for (int v : output_nodes_[channel]) {
+      if (reached[v]) return true;
+    }
+    return false;
+  };
+  const int divide = static_cast<int>(OutputChannel::kDivide);
+  const int expand = static_cast<int>(OutputChannel::kExpand);
+  const int contract = static_cast<int>(OutputChannel::kContract);
+  Viability result;
+  if (output_nodes_[divide].empty()) {
+    result.reason = "the network has no DIVIDE output";
+  } else if (!any_reached(divide)) {
+    result.reason = "no path from an input to a DIVIDE output";
+  } else if (output_nodes_[expand].empty() &&
+             output_nodes_[contract].empty()) {
+    result.reason = "the network has no EXPAND or CONTRACT output";
+  } else if (!any_reached(expand) && !any_reached(contract)) {
+    result.reason = "no path from an input to an EXPAND or CONTRACT output";
+  } else {
+    result.viable = true;
+  }
+  return result;
+}
+
+}  // namespace animat

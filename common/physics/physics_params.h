@@ -1,0 +1,32 @@
+// Constants of the motion physics (MODEL §7) and their configuration
+// message.
+#ifndef ANIMAT_COMMON_PHYSICS_PHYSICS_PARAMS_H_
+#define ANIMAT_COMMON_PHYSICS_PHYSICS_PARAMS_H_
+
+#include "animat/v1/config.pb.h"
+#include "common/base/status.h"
+
+namespace animat {
+
+struct PhysicsParams {
+  double mass = 1.0;               // Of every cell.
+  double stiffness = 10.0;         // Spring k (force per radius).
+  double damping = 0.5;            // Spring gamma (force per unit speed).
+  double pressure = 10.0;          // Chamber c_p.
+  double drag_normal = 1.0;        // d_N.
+  double drag_tangential = 0.005;  // d_T (the paper: d_N / 200).
+  double dt = 0.05;                // Time per simulation step.
+  double actuation_max = 0.2;      // A_max, in [0, 0.5).
+  double min_rest_fraction = 0.1;  // Rest length never below this * L0.
+};
+
+// Overwrites the fields present after checking them; on error `params` is
+// unchanged and the message names the field ("physics.mass: ...").
+Status PhysicsParamsFromProto(const v1::PhysicsConfig& message,
+                              PhysicsParams* params);
+// Every field set.
+v1::PhysicsConfig PhysicsParamsToProto(const PhysicsParams& params);
+
+}  // namespace animat
+
+#endif  // ANIMAT_COMMON_PHYSICS_PHYSICS_PARAMS_H_

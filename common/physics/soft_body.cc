@@ -1,0 +1,160 @@
+#include "common/physics/soft_body.h"
+
+#include <cassert>
+#include <cmath>
+#include <cstdio>
+
+#include "common/geometry/polygon.h"
+
+namespace animat {
+
+SoftBody::SoftBody(const Body& body, const PhysicsParams& params)
+    : params_(params), nodes_(body.nodes()) {
+  for (const Spring& s : body.springs) {
+    spring_a_.push_back(s.a);
+    spring_b_.push_back(s.b);
+    rest0_.push_back(s.rest_length);
+  }
+  rest_ = rest0_;
+  walk_begin_.push_back(0);
+  for (const Chamber& c : body.chambers) {
+    walk_.insert(walk_.end(), c.walk.begin(), c.walk.end());
+    walk_begin_.push_back(static_cast<int>(walk_.size()));
+    rest_area_.push_back(c.rest_area);
+  }
+  for (const IndexEdge& e : body.skin) {
+    skin_a_.push_back(e.a);
+    skin_b_.push_back(e.b);
+  }
+}
+
+void SoftBody::SetActuation(std::span<const double> expand,
+                            std::span<const double> contract) {
+  assert(static_cast<int>(expand.size()) >= nodes_ &&
+         static_cast<int>(contract.size()) >= nodes_);
+  const double amax = params_.actuation_max;
+  const double floor = params_.min_rest_fraction;
+  for (size_t s = 0; s < rest0_.size(); ++s) {
+    const int a = spring_a_[s];
+    const int b = spring_b_[s];
+    const double factor =
+        1.0 + amax * (expand[a] + expand[b] - contract[a] - contract[b]);
+    // NaN actuation stays NaN (never replaced by the floor).
+    rest_[s] = (factor < floor ? floor : factor) * rest0_[s];
+  }
+}
+
+void SoftBody::AddSpringForces(const MotionState& state, Vec2* force) const {
+  const Vec2* x = state.position.data();
+  const Vec2* v = state.velocity.data();
+  const double k = params_.stiffness;
+  const double gamma = params_.damping;
+  for (size_t s = 0; s < rest_.size(); ++s) {
+    const int a = spring_a_[s];
+    const int b = spring_b_[s];
+    const Vec2 d = x[b] - x[a];
+    const double l = Length(d);
+    const Vec2 u = l > 0.0 ? d / l : Vec2{};
+    const double f = k * (l - rest_[s]) + gamma * Dot(v[b] - v[a], u);
+    const Vec2 fa = u * f;
+    force[a] += fa;
+    force[b] -= fa;
+  }
+}
+
+void SoftBody::AddPressureForces(const MotionState& state,
+                                 Vec2* force) const {
+  const Vec2* x = state.position.data();
+  const double cp = params_.pressure;
+  for (size_t c = 0; c < rest_area_.size(); ++c) {
+    const int begin = walk_begin_[c];
+    const int end = walk_begin_[c + 1];
+    const std::span<const int> walk(&walk_[begin], end - begin);
+    const double area = WalkArea(x, walk);
+    // c_p * l * (1 - S / S0) * n with n = (dy, -dx) / l, half to each end.
+    const double half = 0.5 * cp * (1.0 - area / rest_area_[c]);
+    for (int k = begin; k < end; ++k) {
+      const int a = walk_[k];
+      const int b = walk_[k + 1 < end ? k + 1 : begin];
+      const Vec2 push = Vec2{x[b].y - x[a].y, -(x[b].x - x[a].x)} * half;
+      force[a] += push;
+      force[b] += push;
+    }
+  }
+}
+
+void SoftBody::AddDragForces(const MotionState& state, Vec2* force) const {
+  const Vec2* x = state.position.data();
+  const Vec2* v = state.velocity.data();
+  const double dn = params_.drag_normal;
+  const double dt = params_.drag_tangential;
+  for (size_t e = 0; e < skin_a_.size(); ++e) {
+    const int a = skin_a_[e];
+    const int b = skin_b_[e];
+    const Vec2 d = x[b] - x[a];
+    const double l = Length(d);
+    if (!(l > 0.0)) continue;  // No length, no drag.
+    const Vec2 t = d / l;
+    const Vec2 n{t.y, -t.x};
+    const Vec2 vc = (v[a] + v[b]) * 0.5;
+    const double vt = Dot(vc, t);
+    const double vn = Dot(vc, n);
+    // -d l sign(v) v^2 = -d l |v| v.
+    const Vec2 f = t * (-dt * l * std::fabs(vt) * vt) +
+                   n * (-dn * l * std::fabs(vn) * vn);
+    const Vec2 half = f * 0.5;
+    force[a] += half;
+    force[b] += half;
+  }
+}
+
+void SoftBody::ComputeForces(const MotionState& state,
+                             std::vector<Vec2>* force) {
+  force->assign(nodes_, Vec2{});
+  AddSpringForces(state, force->data());
+  AddPressureForces(state, force->data());
+  AddDragForces(state, force->data());
+}
+
+void SoftBody::Step(MotionState* state) {
+  ComputeForces(*state, &force_);
+  const double m = params_.mass;
+  const double dt = params_.dt;
+  for (int i = 0; i < nodes_; ++i) {
+    state->velocity[i] += force_[i] / m * dt;
+    state->position[i] += state->velocity[i] * dt;
+  }
+}
+
+double SoftBody::ChamberArea(const MotionState& state, int chamber) const {
+  const int begin = walk_begin_[chamber];
+  const int end = walk_begin_[chamber + 1];
+  return WalkArea(state.position.data(),
+                  std::span<const int>(&walk_[begin], end - begin));
+}
+
+std::string CheckState(const MotionState& state, double max_coordinate) {
+  for (size_t i = 0; i < state.position.size(); ++i) {
+    const Vec2 x = state.position[i];
+    const Vec2 v = state.velocity[i];
+    if (!IsFinite(x)) return "non-finite position of node " + std::to_string(i);
+    if (!IsFinite(v)) return "non-finite velocity of node " + std::to_string(i);
+    if (std::fabs(x.x) > max_coordinate || std::fabs(x.y) > max_coordinate) {
+      char bound[32];
+      std::snprintf(bound, sizeof(bound), "%g", max_coordinate);
+      return "node " + std::to_string(i) + " left the region |x|, |y| <= " +
+             bound;
+    }
+  }
+  return "";
+}
+
+Vec2 CentreOfMass(const MotionState& state) {
+  if (state.position.empty()) return {};
+  Vec2 sum;
+  for (const Vec2& x : state.position) sum += x;
+  const double n = static_cast<double>(state.position.size());
+  return sum / n;
+}
+
+}  // namespace animat
