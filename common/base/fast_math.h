@@ -29,6 +29,7 @@ constexpr double kLn2Lo = 1.90821492927058770002e-10;
 // Adding this rounds a double of magnitude < 2^51 to an integer held in
 // the low mantissa bits.
 constexpr double kShifter = 0x1.8p52;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // expm1(r) for |r| <= ln2/2 by its Taylor series to degree 13 (truncation
 // error below 4e-18 relative).
@@ -72,27 +73,49 @@ inline double Reduce(double x, double* scale) {
 
 }  // namespace fast_math_internal
 
-// e^x on [-708, 709]; 0 below (no subnormal results) and +inf above.
+// e^x on [-708, 709]; 0 below (no subnormal results), +inf above, NaN
+// for NaN.
 inline double Exp(double x) {
   using namespace fast_math_internal;
-  const double clamped = x < -708.0 ? -708.0 : (x > 709.0 ? 709.0 : x);
+  // Branch-free clamp (see Tanh) so array loops vectorise: the sign bit
+  // decides which bound applies.
+  const uint64_t bits = std::bit_cast<uint64_t>(x);
+  const uint64_t magnitude = bits & ~(uint64_t{1} << 63);
+  const uint64_t bound = (bits >> 63) ? std::bit_cast<uint64_t>(708.0)
+                                      : std::bit_cast<uint64_t>(709.0);
+  const bool outside = magnitude > bound;  // Also true for NaN.
+  const double clamped = std::bit_cast<double>(
+      outside ? (bits & (uint64_t{1} << 63)) | bound : bits);
   double scale;
   const double r = Reduce(clamped, &scale);
   const double y = (1.0 + Expm1Reduced(r)) * scale;
-  const double big = x > 709.0 ? std::numeric_limits<double>::infinity() : y;
-  return x < -708.0 ? 0.0 : big;
+  // Outside the range: 0 below, +inf above, x itself when NaN. Selected
+  // with masks so y is always computed and the loop has no branch.
+  const bool is_nan = magnitude > std::bit_cast<uint64_t>(kInfinity);
+  const uint64_t beyond =
+      is_nan ? bits
+             : ((bits >> 63) ? uint64_t{0} : std::bit_cast<uint64_t>(kInfinity));
+  const uint64_t mask = uint64_t{0} - static_cast<uint64_t>(outside);
+  return std::bit_cast<double>((std::bit_cast<uint64_t>(y) & ~mask) |
+                               (beyond & mask));
 }
 
 // Hyperbolic tangent, odd and monotone; exactly +-1 for |x| >= 19.1.
+// Non-finite x gives NaN.
 inline double Tanh(double x) {
   using namespace fast_math_internal;
-  double a = std::fabs(x);
-  a = a > 20.0 ? 20.0 : a;
+  // Clamp |x| to 20 (tanh(20) rounds to 1) with an integer minimum: for
+  // non-negative doubles the bit patterns order like the values, and this
+  // form keeps the loop free of branches so it vectorises.
+  const uint64_t bits = std::bit_cast<uint64_t>(std::fabs(x));
+  constexpr uint64_t kTwenty = std::bit_cast<uint64_t>(20.0);
+  const double a = std::bit_cast<double>(bits < kTwenty ? bits : kTwenty);
   double scale;
   const double r = Reduce(2.0 * a, &scale);
   // expm1(2a) = 2^k * expm1(r) + (2^k - 1).
   const double em1 = scale * Expm1Reduced(r) + (scale - 1.0);
-  return std::copysign(em1 / (em1 + 2.0), x);
+  // x - x is 0 for finite x and NaN otherwise.
+  return std::copysign(em1 / (em1 + 2.0), x) * (1.0 + (x - x));
 }
 
 // sin(x) and cos(x) for |x| < 2^20 (accuracy degrades beyond; arguments

@@ -75,7 +75,8 @@ DevelopmentOutcome Development::Run(const Observer& observer) {
   if (embryo_.cells() < params_.min_cells) {
     outcome.status = DevelopmentStatus::kTooFewCells;
     outcome.reason = std::to_string(embryo_.cells()) +
-                     " cells at the end of development; at least " +
+                     (embryo_.cells() == 1 ? " cell" : " cells") +
+                     " at the end of development; at least " +
                      std::to_string(params_.min_cells) + " needed";
   }
   return outcome;

@@ -37,7 +37,7 @@ MorphogenField::MorphogenField(int morphogens, int capacity,
   kernel_.assign(cap * cap, 0.0);
   delay_.assign(cap * cap, 0);
   history_.assign(kHistory * cap * morphogens, 0.0);
-  sum_.assign(morphogens, 0.0);
+  sum_.assign(cap * morphogens, 0.0);
 }
 
 void MorphogenField::AddCell() {
@@ -87,22 +87,71 @@ void MorphogenField::Record(int step, const GrnBatch& grn) {
   }
 }
 
+namespace {
+
+// M_j(i) for every cell i: sums over source cells k in increasing order.
+// kM > 0 fixes the morphogen count at compile time (sums in registers,
+// vectorised); kM == 0 handles any count.
+template <int kM>
+void ApplyKernel(int step, int n, int m_count, int capacity,
+                 const double* kernel, const uint8_t* delay,
+                 const double* history, double* out) {
+  constexpr int kHistory = MorphogenField::kHistory;
+  if constexpr (kM > 0) m_count = kM;
+  for (int i = 0; i < n; ++i) {
+    double sum[kM > 0 ? kM : 1] = {};
+    double* acc = kM > 0 ? sum : &out[static_cast<size_t>(i) * m_count];
+    if constexpr (kM == 0) std::fill_n(acc, m_count, 0.0);
+    const double* kernel_row = &kernel[static_cast<size_t>(i) * capacity];
+    const uint8_t* delay_row = &delay[static_cast<size_t>(i) * capacity];
+    for (int k = 0; k < n; ++k) {
+      const double w = kernel_row[k];
+      const size_t slot =
+          static_cast<size_t>(step - delay_row[k]) & (kHistory - 1);
+      const double* h =
+          &history[(static_cast<size_t>(k) * kHistory + slot) * m_count];
+      for (int m = 0; m < m_count; ++m) acc[m] += w * h[m];
+    }
+    if constexpr (kM > 0) {
+      for (int m = 0; m < kM; ++m) out[static_cast<size_t>(i) * kM + m] = sum[m];
+    }
+  }
+}
+
+}  // namespace
+
 void MorphogenField::Apply(int step, GrnBatch* grn) const {
   const int n = cells_;
   const int m_count = morphogens_;
   double* sum = sum_.data();
-  for (int i = 0; i < n; ++i) {
-    std::fill_n(sum, m_count, 0.0);
-    for (int k = 0; k < n; ++k) {
-      const double w = kernel_[i * capacity_ + k];
-      const size_t s = static_cast<size_t>(step - delay_[i * capacity_ + k]) &
-                       (kHistory - 1);
-      const double* h = &history_[(s * capacity_ + k) * m_count];
-      for (int m = 0; m < m_count; ++m) sum[m] += w * h[m];
-    }
-    for (int m = 0; m < m_count; ++m) {
+  const double* kernel = kernel_.data();
+  const uint8_t* delay = delay_.data();
+  const double* history = history_.data();
+  switch (m_count) {
+#define ANIMAT_APPLY_CASE(M)                                                \
+  case M:                                                                   \
+    ApplyKernel<M>(step, n, m_count, capacity_, kernel, delay, history, sum); \
+    break;
+    ANIMAT_APPLY_CASE(1)
+    ANIMAT_APPLY_CASE(2)
+    ANIMAT_APPLY_CASE(3)
+    ANIMAT_APPLY_CASE(4)
+    ANIMAT_APPLY_CASE(5)
+    ANIMAT_APPLY_CASE(6)
+    ANIMAT_APPLY_CASE(7)
+    ANIMAT_APPLY_CASE(8)
+#undef ANIMAT_APPLY_CASE
+    default:
+      ApplyKernel<0>(step, n, m_count, capacity_, kernel, delay, history,
+                     sum);
+      break;
+  }
+  for (int m = 0; m < m_count; ++m) {
+    double* signal = grn->signal_row(m);
+    for (int i = 0; i < n; ++i) {
       // NaN passes through (never clamped to a number).
-      grn->signal_row(m)[i] = sum[m] > 1.0 ? 1.0 : sum[m];
+      const double v = sum[static_cast<size_t>(i) * m_count + m];
+      signal[i] = v > 1.0 ? 1.0 : v;
     }
   }
 }

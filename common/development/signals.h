@@ -62,10 +62,10 @@ class MorphogenField {
   int delay(int i, int k) const { return delay_[i * capacity_ + k]; }
 
  private:
+  // The cell's values entering `step` (any integer; the ring wraps).
   double* slot(int step, int cell) {
-    return &history_[((static_cast<size_t>(step) & (kHistory - 1)) *
-                          capacity_ +
-                      cell) *
+    return &history_[(static_cast<size_t>(cell) * kHistory +
+                      (static_cast<size_t>(step) & (kHistory - 1))) *
                      morphogens_];
   }
 
@@ -75,8 +75,8 @@ class MorphogenField {
   SignalParams params_;
   std::vector<double> kernel_;    // capacity x capacity
   std::vector<uint8_t> delay_;    // capacity x capacity
-  std::vector<double> history_;   // [slot][cell][morphogen]
-  mutable std::vector<double> sum_;  // scratch, one per morphogen
+  std::vector<double> history_;   // [cell][slot][morphogen]
+  mutable std::vector<double> sum_;  // scratch, [cell][morphogen]
 };
 
 }  // namespace animat

@@ -1,5 +1,7 @@
 #include "common/geometry/gabriel.h"
 
+#include <cmath>
+
 namespace animat {
 
 bool InsideDiametralCircle(Vec2 p, Vec2 a, Vec2 b) {
@@ -8,14 +10,24 @@ bool InsideDiametralCircle(Vec2 p, Vec2 a, Vec2 b) {
 
 double Orient(Vec2 a, Vec2 b, Vec2 c) { return Cross(b - a, c - a); }
 
+int OrientSign(Vec2 a, Vec2 b, Vec2 c) {
+  const double left = (b.x - a.x) * (c.y - a.y);
+  const double right = (b.y - a.y) * (c.x - a.x);
+  const double det = left - right;
+  constexpr double kEpsilon = 0x1p-53;
+  const double bound =
+      (3.0 + 16.0 * kEpsilon) * kEpsilon * (std::fabs(left) + std::fabs(right));
+  if (det > bound) return 1;
+  if (det < -bound) return -1;
+  return 0;
+}
+
 bool SegmentsProperlyCross(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
-  const double o1 = Orient(a, b, c);
-  const double o2 = Orient(a, b, d);
-  const double o3 = Orient(c, d, a);
-  const double o4 = Orient(c, d, b);
-  const bool split_cd = (o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0);
-  const bool split_ab = (o3 > 0.0 && o4 < 0.0) || (o3 < 0.0 && o4 > 0.0);
-  return split_cd && split_ab;
+  const int o1 = OrientSign(a, b, c);
+  const int o2 = OrientSign(a, b, d);
+  const int o3 = OrientSign(c, d, a);
+  const int o4 = OrientSign(c, d, b);
+  return o1 * o2 == -1 && o3 * o4 == -1;
 }
 
 std::vector<IndexEdge> PlaneGabrielGraph(std::span<const Vec2> points) {

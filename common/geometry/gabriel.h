@@ -30,9 +30,15 @@ bool InsideDiametralCircle(Vec2 p, Vec2 a, Vec2 b);
 // Twice the signed area of triangle a, b, c: > 0 when counter-clockwise.
 double Orient(Vec2 a, Vec2 b, Vec2 c);
 
-// True when segments a-b and c-d cross at a point interior to both (each
-// segment's endpoints lie strictly on opposite sides of the other's line).
-// Segments that share an endpoint or only touch do not cross properly.
+// The sign of Orient(a, b, c): +1 or -1 when rounding cannot have decided
+// it, 0 when it could have (|Orient| within Shewchuk's forward error bound
+// for orient2d, (3 + 16 eps) eps (|t1| + |t2|) for its two products t1, t2).
+int OrientSign(Vec2 a, Vec2 b, Vec2 c);
+
+// True when segments a-b and c-d cross at a point interior to both: each
+// segment's endpoints lie certainly on opposite sides of the other's line
+// (OrientSign +1 and -1). Segments that share an endpoint, only touch, or
+// are so nearly collinear that rounding could decide do not cross.
 bool SegmentsProperlyCross(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
 
 // The Gabriel graph of `points`: i-j (i < j) is an edge iff no other point

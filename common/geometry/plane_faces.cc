@@ -1,6 +1,7 @@
 #include "common/geometry/plane_faces.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <string>
 
 #include "common/geometry/polygon.h"
@@ -124,9 +125,10 @@ Result<PlaneFaces> FacesOfPlaneGraph(std::span<const Vec2> points,
   for (size_t f = 0; f < faces.size(); ++f) {
     if (f == outer) continue;
     if (!(areas[f] > 0.0)) {
+      char area[32];
+      std::snprintf(area, sizeof(area), "%.17g", areas[f]);
       return Status::InvalidArgument(
-          "not a plane graph: a bounded face has area " +
-          std::to_string(areas[f]));
+          std::string("not a plane graph: a bounded face has area ") + area);
     }
     result.bounded.push_back(std::move(faces[f]));
     result.bounded_area.push_back(areas[f]);

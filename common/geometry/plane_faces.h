@@ -21,18 +21,20 @@ struct PlaneFaces {
   // Signed area of each bounded face (> 0), same order.
   std::vector<double> bounded_area;
   // The outer face's walk (clockwise; a bridge or a tree edge appears
-  // twice) and its signed area (<= 0: minus the enclosed area).
+  // twice) and its signed area: minus the enclosed area (for a tree, 0 up
+  // to rounding).
   std::vector<int> outer;
   double outer_area = 0.0;
   // Edges on the outer face, each once, sorted: the skin.
   std::vector<IndexEdge> outer_edges;
 };
 
-// Finds the faces of the graph (points, edges). Fails with
+// Finds the faces of the graph (points, edges), which must be a plane
+// graph (no two edges cross) with distinct edges, a != b. Fails with
 // kInvalidArgument, saying why, when the graph has fewer than two vertices,
-// is disconnected, has a zero-length edge, or is not plane (a bounded face
-// that is not counter-clockwise, or a face count that breaks Euler's
-// formula). Edges must be distinct with a != b.
+// is disconnected or has a zero-length edge; crossing edges are detected
+// only when they break Euler's formula or give a bounded face that is not
+// counter-clockwise.
 Result<PlaneFaces> FacesOfPlaneGraph(std::span<const Vec2> points,
                                      std::span<const IndexEdge> edges);
 

@@ -1,0 +1,239 @@
+// End-to-end tests of build/bin/animat: the real binary, real files.
+#include <sys/wait.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "animat/v1/trace.pb.h"
+#include "common/genome/genome_proto.h"
+#include "common/io/proto_file.h"
+#include "tests/test_util.h"
+
+namespace animat {
+namespace {
+
+struct Outcome {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr.
+};
+
+Outcome Animat(const std::string& arguments) {
+  const std::string command =
+      std::string(ANIMAT_BIN_DIR) + "/animat " + arguments + " 2>&1";
+  Outcome run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return run;
+  char buffer[4096];
+  size_t n;
+  while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0) {
+    run.output.append(buffer, n);
+  }
+  const int status = pclose(pipe);
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+std::string Temp(const std::string& name) {
+  return ::testing::TempDir() + "/animat-cli-" + name;
+}
+
+std::vector<std::string> Lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// A configuration with a short motion phase, to keep the tests fast.
+std::string ShortConfig() {
+  const std::string path = Temp("short.txtpb");
+  EXPECT_TRUE(WriteFile(path, "evaluation { motion_steps: 200 }\n").ok());
+  return path;
+}
+
+TEST(CliTest, RandomGenomeIsAPureFunctionOfTheSeed) {
+  ASSERT_EQ(Animat("random-genome --seed 7 -o " + Temp("a.json")).exit_code,
+            0);
+  ASSERT_EQ(Animat("random-genome --seed 7 -o " + Temp("b.json")).exit_code,
+            0);
+  ASSERT_EQ(Animat("random-genome --seed 8 -o " + Temp("c.json")).exit_code,
+            0);
+  EXPECT_EQ(*ReadFile(Temp("a.json")), *ReadFile(Temp("b.json")));
+  EXPECT_NE(*ReadFile(Temp("a.json")), *ReadFile(Temp("c.json")));
+  v1::Genome message;
+  ASSERT_TRUE(ReadProtoFile(Temp("a.json"), &message).ok());
+  Result<Genome> genome = GenomeFromProto(message);
+  ASSERT_TRUE(genome.ok());
+  EXPECT_EQ(genome->elements.size(), 30u);  // 10 units of 2, 10 S.
+}
+
+TEST(CliTest, RandomGenomeTakesUnitsAndTextFormat) {
+  ASSERT_EQ(Animat("random-genome --seed 3 --units 4 -o " + Temp("g.txtpb"))
+                .exit_code,
+            0);
+  v1::Genome message;
+  ASSERT_TRUE(ReadProtoFile(Temp("g.txtpb"), &message).ok());
+  EXPECT_EQ(message.elements_size(), 18);
+}
+
+TEST(CliTest, GrnPrintsOneRowPerStepInNodeOrder) {
+  const Outcome run = Animat("grn --genome " + testing::TestData("genomes/example.json") +
+                         " --inputs 0,0,0,1 --steps 3");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::vector<std::string> lines = Lines(run.output);
+  ASSERT_EQ(lines.size(), 4u);
+  EXPECT_EQ(lines[0], "step,in_0_UNIFORM,unit_1,out_3_DIVIDE");
+  // Step 1 by hand: A = 10 exp(-0.5) * 1; L = 0.05 tanh(A / 2); the output
+  // node still reads L = 0 of the unit, so it stays at 0.
+  EXPECT_EQ(lines[1], "1,1,0.04976833334335129,0");
+  EXPECT_EQ(lines[3].substr(0, 2), "3,");
+}
+
+TEST(CliTest, GrnRejectsAWrongNumberOfInputs) {
+  const Outcome run = Animat("grn --genome " + testing::TestData("genomes/example.json") +
+                         " --inputs 0,0,1 --steps 3");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.output.find("--inputs"), std::string::npos) << run.output;
+}
+
+TEST(CliTest, SimulatePrintsStatusAndFitness) {
+  const Outcome run =
+      Animat("simulate --genome " + testing::TestData("genomes/seed-1198.json") +
+             " --config " + ShortConfig());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::vector<std::string> lines = Lines(run.output);
+  ASSERT_GE(lines.size(), 4u);
+  EXPECT_EQ(lines[0], "status: ok");
+  EXPECT_EQ(lines[1].rfind("fitness: ", 0), 0u);
+  EXPECT_EQ(lines[2], "cells: 32");
+  EXPECT_EQ(lines[3], "steps: 800");
+}
+
+TEST(CliTest, SimulateOfAFailureHasAReasonAndNoFitness) {
+  const Outcome run = Animat("simulate --genome " +
+                         testing::TestData("genomes/seed-1-nonviable.json"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("status: non_viable"), std::string::npos);
+  EXPECT_NE(run.output.find("reason: "), std::string::npos);
+  EXPECT_EQ(run.output.find("fitness"), std::string::npos);
+}
+
+TEST(CliTest, SimulateJsonIsAnEvaluationResult) {
+  const Outcome run = Animat("simulate --json --genome " +
+                         testing::TestData("genomes/seed-2-too-few-cells.json"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  v1::EvaluationResult result;
+  ASSERT_TRUE(ParseProto(run.output, ProtoFormat::kJson, &result).ok())
+      << run.output;
+  EXPECT_EQ(result.status(), v1::EvaluationResult::TOO_FEW_CELLS);
+  EXPECT_EQ(result.cells(), 1);
+}
+
+TEST(CliTest, SimulateWritesACompleteTrace) {
+  const std::string trace_path = Temp("trace.json");
+  const Outcome run =
+      Animat("simulate --genome " + testing::TestData("genomes/seed-1198.json") +
+             " --config " + ShortConfig() + " --trace " + trace_path +
+             " --every 50");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  v1::Trace trace;
+  ASSERT_TRUE(ReadProtoFile(trace_path, &trace).ok());
+  EXPECT_EQ(trace.config().evaluation().motion_steps(), 200);
+  EXPECT_EQ(trace.config().physics().stiffness(), 10.0);  // Defaults too.
+  EXPECT_EQ(trace.genome().elements_size(), 30);
+  // Development steps 0, 50, ..., 350 and the last, 399.
+  ASSERT_EQ(trace.development_size(), 9);
+  EXPECT_EQ(trace.development(8).step(), 399);
+  EXPECT_EQ(trace.development(8).x_size(), 32);
+  EXPECT_EQ(trace.development(0).radius(0), 1.0);
+  EXPECT_EQ(trace.body().nodes_size(), 32);
+  EXPECT_GT(trace.body().springs_size(), 31);
+  EXPECT_GT(trace.body().chambers_size(), 0);
+  EXPECT_GT(trace.body().skin_size(), 0);
+  // Equilibration 0..200 by 50 (5 frames), motion 0..200 by 50 (5 frames).
+  ASSERT_EQ(trace.frames_size(), 10);
+  EXPECT_EQ(trace.frames(0).phase(), v1::MotionFrame::EQUILIBRATION);
+  EXPECT_EQ(trace.frames(9).phase(), v1::MotionFrame::MOTION);
+  EXPECT_EQ(trace.frames(9).step(), 200);
+  EXPECT_EQ(trace.frames(9).vx_size(), 32);
+  EXPECT_EQ(trace.frames(9).expand_size(), 32);
+  EXPECT_EQ(trace.result().status(), v1::EvaluationResult::OK);
+  EXPECT_TRUE(trace.result().has_fitness());
+}
+
+TEST(CliTest, BadGenomeNamesTheFileAndTheField) {
+  const std::string path = Temp("bad.json");
+  ASSERT_TRUE(WriteFile(path,
+                        R"({"elements": [{"type": "P", "sign": 0, "x": 1,)"
+                        R"( "y": 1}]})")
+                  .ok());
+  const Outcome run = Animat("simulate --genome " + path);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.output.find(path), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("elements[0].sign"), std::string::npos)
+      << run.output;
+}
+
+TEST(CliTest, MalformedFilesAndUnknownExtensionsAreErrors) {
+  const std::string garbage = Temp("garbage.json");
+  ASSERT_TRUE(WriteFile(garbage, "{\"elements\": [ {\"type\": \"Q\" ").ok());
+  Outcome run = Animat("simulate --genome " + garbage);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.output.find(garbage), std::string::npos) << run.output;
+
+  const std::string unknown = Temp("genome.yaml");
+  ASSERT_TRUE(WriteFile(unknown, "elements: []").ok());
+  run = Animat("simulate --genome " + unknown);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.output.find(".txtpb"), std::string::npos) << run.output;
+
+  run = Animat("simulate --genome " + Temp("missing.json"));
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.output.find("no such file"), std::string::npos);
+}
+
+TEST(CliTest, BadConfigNamesTheField) {
+  const std::string config = Temp("bad-config.txtpb");
+  ASSERT_TRUE(WriteFile(config, "physics { actuation_max: 0.5 }\n").ok());
+  const Outcome run = Animat("simulate --genome " +
+                         testing::TestData("genomes/seed-1198.json") +
+                         " --config " + config);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.output.find("physics.actuation_max"), std::string::npos)
+      << run.output;
+}
+
+TEST(CliTest, SceneRunsAHandMadeBody) {
+  const std::string trace_path = Temp("scene-trace.json");
+  const Outcome run = Animat("scene --scene " +
+                         testing::TestData("scenes/triangle.txtpb") +
+                         " --steps 100 --every 25 --trace " + trace_path);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("status: ok"), std::string::npos);
+  EXPECT_NE(run.output.find("steps: 100"), std::string::npos);
+  v1::Trace trace;
+  ASSERT_TRUE(ReadProtoFile(trace_path, &trace).ok());
+  ASSERT_EQ(trace.frames_size(), 5);  // Steps 0, 25, 50, 75, 100.
+  EXPECT_EQ(trace.frames(0).x(1), 2.0);
+  EXPECT_EQ(trace.body().chambers_size(), 1);
+  EXPECT_EQ(trace.config().physics().mass(), 1.0);
+}
+
+TEST(CliTest, SceneWithABadIndexNamesTheField) {
+  const std::string path = Temp("bad-scene.txtpb");
+  ASSERT_TRUE(WriteFile(path,
+                        "body { nodes { x: 0 } nodes { x: 1 } "
+                        "springs { a: 0 b: 5 rest_length: 1 } }\n")
+                  .ok());
+  const Outcome run = Animat("scene --scene " + path + " --steps 10");
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.output.find("body.springs[0].b"), std::string::npos)
+      << run.output;
+}
+
+}  // namespace
+}  // namespace animat

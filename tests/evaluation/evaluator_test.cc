@@ -1,0 +1,185 @@
+#include "common/evaluation/evaluator.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "common/base/rng.h"
+#include "common/genome/genome_proto.h"
+#include "common/genome/random_genome.h"
+#include "common/io/proto_file.h"
+#include "tests/test_util.h"
+
+namespace animat {
+namespace {
+
+Genome LoadGenome(const std::string& name) {
+  v1::Genome message;
+  Status status = ReadProtoFile(testing::TestData("genomes/" + name), &message);
+  EXPECT_TRUE(status.ok()) << status.ToString();
+  Result<Genome> genome = GenomeFromProto(message);
+  EXPECT_TRUE(genome.ok()) << genome.status().ToString();
+  return genome.ok() ? *genome : Genome{};
+}
+
+// A short schedule: the statuses do not depend on the motion's length.
+ModelConfig ShortConfig() {
+  ModelConfig config;
+  config.evaluation.motion_steps = 300;
+  return config;
+}
+
+TEST(EvaluatorTest, NonViableNetworkHasNoFitnessAndSaysWhy) {
+  const EvaluationResult r =
+      Evaluate(LoadGenome("seed-1-nonviable.json"), ShortConfig());
+  EXPECT_EQ(r.status, EvalStatus::kNonViable);
+  EXPECT_FALSE(r.fitness.has_value());
+  EXPECT_NE(r.reason.find("DIVIDE"), std::string::npos) << r.reason;
+  EXPECT_EQ(r.steps, 0);
+}
+
+TEST(EvaluatorTest, TooFewCellsHasNoFitness) {
+  const EvaluationResult r =
+      Evaluate(LoadGenome("seed-2-too-few-cells.json"), ShortConfig());
+  EXPECT_EQ(r.status, EvalStatus::kTooFewCells);
+  EXPECT_FALSE(r.fitness.has_value());
+  EXPECT_EQ(r.cells, 1);
+  EXPECT_EQ(r.steps, 400);
+  EXPECT_NE(r.reason.find("at least 3"), std::string::npos) << r.reason;
+}
+
+TEST(EvaluatorTest, InvalidGenomeIsAStatusNotACrash) {
+  Genome genome = LoadGenome("seed-1198.json");
+  genome.elements[0].sign = 0;
+  const EvaluationResult r = Evaluate(genome, ShortConfig());
+  EXPECT_EQ(r.status, EvalStatus::kInvalidGenome);
+  EXPECT_FALSE(r.fitness.has_value());
+  EXPECT_NE(r.reason.find("elements[0].sign"), std::string::npos);
+}
+
+TEST(EvaluatorTest, LateDivisionWhenDivisionsMustEndEarly) {
+  ModelConfig config = ShortConfig();
+  config.development.last_division_step = 10;
+  const EvaluationResult r = Evaluate(LoadGenome("seed-1198.json"), config);
+  EXPECT_EQ(r.status, EvalStatus::kLateDivision);
+  EXPECT_FALSE(r.fitness.has_value());
+  EXPECT_NE(r.reason.find("divisions must end before step 10"),
+            std::string::npos)
+      << r.reason;
+}
+
+TEST(EvaluatorTest, ViableAnimatRunsEveryPhase) {
+  const ModelConfig config = ShortConfig();
+  const EvaluationResult r = Evaluate(LoadGenome("seed-1198.json"), config);
+  ASSERT_EQ(r.status, EvalStatus::kOk) << r.reason;
+  ASSERT_TRUE(r.fitness.has_value());
+  EXPECT_TRUE(std::isfinite(*r.fitness));
+  EXPECT_GE(*r.fitness, 0.0);
+  EXPECT_EQ(r.cells, 32);
+  EXPECT_EQ(r.steps, 400 + 200 + 300);
+  EXPECT_NE(r.state_hash, 0u);
+  EXPECT_TRUE(r.reason.empty());
+}
+
+TEST(EvaluatorTest, RunawayMotionIsANumericalFailure) {
+  // Springs far beyond the explicit stability limit blow up; the evaluation
+  // must say so instead of returning a number.
+  ModelConfig config = ShortConfig();
+  config.physics.stiffness = 1e7;
+  config.physics.actuation_max = 0.45;
+  testing::FpTrapsOff traps_off;
+  const EvaluationResult r = Evaluate(LoadGenome("seed-1198.json"), config);
+  EXPECT_EQ(r.status, EvalStatus::kNumericalFailure);
+  EXPECT_FALSE(r.fitness.has_value());
+  EXPECT_FALSE(r.reason.empty());
+}
+
+class PhaseRecorder : public EvaluationObserver {
+ public:
+  void OnDevelopmentStep(int step, const Development&) override {
+    development_steps.push_back(step);
+  }
+  void OnBody(const Body& body, std::span<const double> expand,
+              std::span<const double> contract) override {
+    body_nodes = body.nodes();
+    actuation = static_cast<int>(expand.size() + contract.size());
+  }
+  void OnMotionStep(MotionPhase phase, int step, const MotionState&,
+                    std::span<const double>,
+                    std::span<const double>) override {
+    (phase == MotionPhase::kEquilibration ? equilibration : motion)
+        .push_back(step);
+  }
+  std::vector<int> development_steps, equilibration, motion;
+  int body_nodes = 0;
+  int actuation = 0;
+};
+
+TEST(EvaluatorTest, ObserverSeesEveryStepOfEveryPhase) {
+  PhaseRecorder recorder;
+  const ModelConfig config = ShortConfig();
+  const EvaluationResult r =
+      Evaluate(LoadGenome("seed-1198.json"), config, &recorder);
+  ASSERT_EQ(r.status, EvalStatus::kOk);
+  ASSERT_EQ(recorder.development_steps.size(), 400u);
+  EXPECT_EQ(recorder.development_steps.front(), 0);
+  EXPECT_EQ(recorder.development_steps.back(), 399);
+  EXPECT_EQ(recorder.body_nodes, 32);
+  EXPECT_EQ(recorder.actuation, 64);
+  ASSERT_EQ(recorder.equilibration.size(), 201u);  // Steps 0..200.
+  EXPECT_EQ(recorder.equilibration.back(), 200);
+  ASSERT_EQ(recorder.motion.size(), 301u);  // Steps 0..300.
+  EXPECT_EQ(recorder.motion.back(), 300);
+}
+
+TEST(EvaluatorTest, ObservingDoesNotChangeTheResult) {
+  PhaseRecorder recorder;
+  const ModelConfig config = ShortConfig();
+  const Genome genome = LoadGenome("seed-1198.json");
+  const EvaluationResult plain = Evaluate(genome, config);
+  const EvaluationResult observed = Evaluate(genome, config, &recorder);
+  EXPECT_EQ(plain.state_hash, observed.state_hash);
+  EXPECT_EQ(plain.fitness, observed.fitness);
+}
+
+TEST(EvaluatorTest, RandomGenomesNeverCrashAndAlwaysGiveAStatus) {
+  // Development only needs a few steps to hit every early status.
+  ModelConfig config;
+  config.evaluation.motion_steps = 20;
+  config.evaluation.equilibration_steps = 20;
+  for (uint64_t individual = 0; individual < 60; ++individual) {
+    RandomStream stream(99, individual, StreamPurpose::kRandomGenome);
+    const EvaluationResult r = Evaluate(RandomGenome(stream), config);
+    EXPECT_EQ(r.fitness.has_value(), r.status == EvalStatus::kOk);
+    EXPECT_EQ(r.reason.empty(), r.status == EvalStatus::kOk);
+    if (r.fitness) {
+      EXPECT_TRUE(std::isfinite(*r.fitness));
+    }
+  }
+}
+
+TEST(EvaluatorTest, ResultConvertsToProto) {
+  EvaluationResult r;
+  r.status = EvalStatus::kTooFewCells;
+  r.reason = "2 cells";
+  r.cells = 2;
+  r.steps = 400;
+  v1::EvaluationResult m = EvaluationResultToProto(r);
+  EXPECT_EQ(m.status(), v1::EvaluationResult::TOO_FEW_CELLS);
+  EXPECT_FALSE(m.has_fitness());
+  r.status = EvalStatus::kOk;
+  r.fitness = 0.0;
+  m = EvaluationResultToProto(r);
+  EXPECT_EQ(m.status(), v1::EvaluationResult::OK);
+  ASSERT_TRUE(m.has_fitness());  // A fitness of 0 is still present.
+  EXPECT_EQ(m.fitness(), 0.0);
+  EXPECT_EQ(EvaluationResultToProto({EvalStatus::kInvalidGenome, "", {}, 0, 0,
+                                     0})
+                .status(),
+            v1::EvaluationResult::INVALID_GENOME);
+}
+
+}  // namespace
+}  // namespace animat

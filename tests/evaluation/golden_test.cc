@@ -1,0 +1,60 @@
+// Golden determinism: fixed genomes give fixed fitness bits and final-state
+// hashes. CI runs this in a Release build and in a Debug build with
+// sanitizers; both must match these values, so optimisation never changes
+// a result. A deliberate change of the model changes them: update them in
+// the same commit and say why.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstdint>
+#include <string>
+
+#include "common/evaluation/evaluator.h"
+#include "common/genome/genome_proto.h"
+#include "common/io/proto_file.h"
+#include "tests/test_util.h"
+
+namespace animat {
+namespace {
+
+struct Golden {
+  const char* genome;
+  uint64_t fitness_bits;
+  uint64_t state_hash;
+};
+
+class GoldenTest : public ::testing::TestWithParam<Golden> {};
+
+TEST_P(GoldenTest, FitnessBitsAndFinalStateAreFixed) {
+  const Golden& golden = GetParam();
+  v1::Genome message;
+  ASSERT_TRUE(ReadProtoFile(
+                  testing::TestData(std::string("genomes/") + golden.genome),
+                  &message)
+                  .ok());
+  Result<Genome> genome = GenomeFromProto(message);
+  ASSERT_TRUE(genome.ok());
+  const EvaluationResult r = Evaluate(*genome, ModelConfig{});
+  ASSERT_EQ(r.status, EvalStatus::kOk) << r.reason;
+  ASSERT_TRUE(r.fitness.has_value());
+  EXPECT_EQ(std::bit_cast<uint64_t>(*r.fitness), golden.fitness_bits)
+      << "fitness " << *r.fitness;
+  EXPECT_EQ(r.state_hash, golden.state_hash) << std::hex << r.state_hash;
+  EXPECT_EQ(r.cells, 32);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Genomes, GoldenTest,
+    ::testing::Values(
+        // A 32-cell body with 40 chambers (the benchmark genome).
+        Golden{"seed-1198.json", 0x3fbba73be0ef9f5eull,
+               0xb803f0ffdb5f8569ull},
+        // A chain of 32 cells (no chambers), the best random mover.
+        Golden{"seed-1203.json", 0x40008b7cce86237eull,
+               0xaf01c57d3a431361ull},
+        // A compact body that barely moves (fitness ~1.6e-9).
+        Golden{"seed-139.json", 0x3e1b71602ce579ccull,
+               0xc99bb08802bdb1e4ull}));
+
+}  // namespace
+}  // namespace animat
