@@ -29,8 +29,8 @@ const Genome& BenchGenome() {
         std::string(ANIMAT_BENCH_DATA_DIR) + "/bench-genome.json";
     v1::Genome message;
     Status status = ReadProtoFile(path, &message);
-    Result<Genome> genome = status.ok() ? GenomeFromProto(message)
-                                        : Result<Genome>(status);
+    Result<Genome> genome =
+        status.ok() ? GenomeFromProto(message) : Result<Genome>(status);
     if (!genome.ok()) {
       std::fprintf(stderr, "%s\n", genome.status().ToString().c_str());
       std::exit(1);
@@ -48,15 +48,14 @@ struct Developed {
   Body body;
   explicit Developed(const Genome& genome)
       : network(Network::Build(genome, config.grn)),
-        development(network, config.grn, config.development,
-                    config.signals) {
+        development(network, config.grn, config.development, config.signals) {
     development.Run();
     body = *BuildBody(development.embryo().position);
     GrnBatch& grn = development.grn();
     for (int cell = 0; cell < grn.cells(); ++cell) {
-      grn.SetInputs(cell, InputValuesAt(development.embryo().position[cell],
-                                        development.maternal_sources(),
-                                        config.signals));
+      grn.SetInputs(
+          cell, InputValuesAt(development.embryo().position[cell],
+                              development.maternal_sources(), config.signals));
     }
     grn.FreezeInputs();
     development.field().SetGeometry(development.embryo().position);
@@ -72,8 +71,7 @@ void BM_Evaluate(benchmark::State& state) {
     benchmark::DoNotOptimize(result);
   }
   state.counters["cells"] = result.cells;
-  state.counters["nodes"] =
-      Network::Build(genome, config.grn).node_count();
+  state.counters["nodes"] = Network::Build(genome, config.grn).node_count();
   state.counters["ok"] = result.status == EvalStatus::kOk;
 }
 BENCHMARK(BM_Evaluate)->Unit(benchmark::kMillisecond);

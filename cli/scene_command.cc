@@ -51,8 +51,8 @@ int Run(const Options& o) {
   const Vec2 start = CentreOfMass(state);
   const bool tracing = !o.trace.empty();
   if (tracing) {
-    AppendFrame(MotionPhase::kMotion, 0, state, scene->expand,
-                scene->contract, &trace);
+    AppendFrame(MotionPhase::kMotion, 0, state, scene->expand, scene->contract,
+                &trace);
   }
   std::string problem;
   int done = 0;

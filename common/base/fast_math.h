@@ -93,8 +93,9 @@ inline double Exp(double x) {
   // with masks so y is always computed and the loop has no branch.
   const bool is_nan = magnitude > std::bit_cast<uint64_t>(kInfinity);
   const uint64_t beyond =
-      is_nan ? bits
-             : ((bits >> 63) ? uint64_t{0} : std::bit_cast<uint64_t>(kInfinity));
+      is_nan
+          ? bits
+          : ((bits >> 63) ? uint64_t{0} : std::bit_cast<uint64_t>(kInfinity));
   const uint64_t mask = uint64_t{0} - static_cast<uint64_t>(outside);
   return std::bit_cast<double>((std::bit_cast<uint64_t>(y) & ~mask) |
                                (beyond & mask));
@@ -135,24 +136,24 @@ inline void SinCos(double x, double* sin_out, double* cos_out) {
   const double r2 = r * r;
   // Taylor series on |r| <= pi/4: sin to degree 17, cos to degree 18
   // (truncation below 1e-19).
-  double s = -1.0 / 355687428096000.0;          // -1/17!
-  s = 1.0 / 1307674368000.0 + r2 * s;           //  1/15!
-  s = -1.0 / 6227020800.0 + r2 * s;             // -1/13!
-  s = 1.0 / 39916800.0 + r2 * s;                //  1/11!
-  s = -1.0 / 362880.0 + r2 * s;                 // -1/9!
-  s = 1.0 / 5040.0 + r2 * s;                    //  1/7!
-  s = -1.0 / 120.0 + r2 * s;                    // -1/5!
-  s = 1.0 / 6.0 + r2 * s;                       //  1/3!
+  double s = -1.0 / 355687428096000.0;  // -1/17!
+  s = 1.0 / 1307674368000.0 + r2 * s;   //  1/15!
+  s = -1.0 / 6227020800.0 + r2 * s;     // -1/13!
+  s = 1.0 / 39916800.0 + r2 * s;        //  1/11!
+  s = -1.0 / 362880.0 + r2 * s;         // -1/9!
+  s = 1.0 / 5040.0 + r2 * s;            //  1/7!
+  s = -1.0 / 120.0 + r2 * s;            // -1/5!
+  s = 1.0 / 6.0 + r2 * s;               //  1/3!
   const double sin_r = r - r * r2 * s;
-  double c = 1.0 / 6402373705728000.0;          //  1/18!
-  c = -1.0 / 20922789888000.0 + r2 * c;         // -1/16!
-  c = 1.0 / 87178291200.0 + r2 * c;             //  1/14!
-  c = -1.0 / 479001600.0 + r2 * c;              // -1/12!
-  c = 1.0 / 3628800.0 + r2 * c;                 //  1/10!
-  c = -1.0 / 40320.0 + r2 * c;                  // -1/8!
-  c = 1.0 / 720.0 + r2 * c;                     //  1/6!
-  c = -1.0 / 24.0 + r2 * c;                     // -1/4!
-  c = 0.5 + r2 * c;                             //  1/2! (sign folded)
+  double c = 1.0 / 6402373705728000.0;   //  1/18!
+  c = -1.0 / 20922789888000.0 + r2 * c;  // -1/16!
+  c = 1.0 / 87178291200.0 + r2 * c;      //  1/14!
+  c = -1.0 / 479001600.0 + r2 * c;       // -1/12!
+  c = 1.0 / 3628800.0 + r2 * c;          //  1/10!
+  c = -1.0 / 40320.0 + r2 * c;           // -1/8!
+  c = 1.0 / 720.0 + r2 * c;              //  1/6!
+  c = -1.0 / 24.0 + r2 * c;              // -1/4!
+  c = 0.5 + r2 * c;                      //  1/2! (sign folded)
   const double cos_r = 1.0 - r2 * c;
   switch (quadrant) {
     case 0:

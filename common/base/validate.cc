@@ -44,16 +44,16 @@ Status RequireInRange(std::string_view field, double value, double lo,
                       double hi, bool include_hi) {
   const bool below_hi = include_hi ? value <= hi : value < hi;
   if (!std::isfinite(value) || !(value >= lo) || !below_hi) {
-    return Fail(field,
-                "in [" + Format(lo) + ", " + Format(hi) +
-                    (include_hi ? "]" : ")"),
-                Format(value));
+    return Fail(
+        field,
+        "in [" + Format(lo) + ", " + Format(hi) + (include_hi ? "]" : ")"),
+        Format(value));
   }
   return Status::Ok();
 }
 
-Status RequireIntInRange(std::string_view field, long long value,
-                         long long lo, long long hi) {
+Status RequireIntInRange(std::string_view field, long long value, long long lo,
+                         long long hi) {
   if (value < lo || value > hi) {
     return Fail(field,
                 "in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]",

@@ -18,8 +18,8 @@ Status RequireNonNegative(std::string_view field, double value);  // >= 0
 // lo <= value <= hi, or lo <= value < hi when !include_hi.
 Status RequireInRange(std::string_view field, double value, double lo,
                       double hi, bool include_hi = true);
-Status RequireIntInRange(std::string_view field, long long value,
-                         long long lo, long long hi);
+Status RequireIntInRange(std::string_view field, long long value, long long lo,
+                         long long hi);
 
 // The first error among `checks`, or OK.
 Status FirstError(std::initializer_list<Status> checks);

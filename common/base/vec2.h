@@ -40,7 +40,9 @@ constexpr double Dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
 constexpr double Cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
 // Euclidean length as sqrt(x*x + y*y) (MODEL §2: not hypot).
 inline double Length(Vec2 a) { return std::sqrt(a.x * a.x + a.y * a.y); }
-inline bool IsFinite(Vec2 a) { return std::isfinite(a.x) && std::isfinite(a.y); }
+inline bool IsFinite(Vec2 a) {
+  return std::isfinite(a.x) && std::isfinite(a.y);
+}
 
 }  // namespace animat
 

@@ -14,23 +14,21 @@ Result<Body> BuildBody(std::span<const Vec2> centres) {
   for (int i = 0; i < n; ++i) {
     for (int j = i + 1; j < n; ++j) {
       if (Length(centres[j] - centres[i]) < kCoincidentDistance) {
-        return Status::InvalidArgument(
-            "cells " + std::to_string(i) + " and " + std::to_string(j) +
-            " are coincident (closer than 1e-9)");
+        return Status::InvalidArgument("cells " + std::to_string(i) + " and " +
+                                       std::to_string(j) +
+                                       " are coincident (closer than 1e-9)");
       }
     }
   }
   const std::vector<IndexEdge> edges = PlaneGabrielGraph(centres);
   Result<PlaneFaces> faces = FacesOfPlaneGraph(centres, edges);
   if (!faces.ok()) {
-    return Status::InvalidArgument("spring graph: " +
-                                   faces.status().message());
+    return Status::InvalidArgument("spring graph: " + faces.status().message());
   }
   Body body;
   body.position.assign(centres.begin(), centres.end());
   for (const IndexEdge& e : edges) {
-    body.springs.push_back(
-        {e.a, e.b, Length(centres[e.b] - centres[e.a])});
+    body.springs.push_back({e.a, e.b, Length(centres[e.b] - centres[e.a])});
   }
   for (size_t f = 0; f < faces->bounded.size(); ++f) {
     body.chambers.push_back({faces->bounded[f], faces->bounded_area[f]});

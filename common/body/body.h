@@ -17,7 +17,7 @@
 namespace animat {
 
 struct Spring {
-  int a = 0;                 // Node indices, a < b for built bodies.
+  int a = 0;  // Node indices, a < b for built bodies.
   int b = 0;
   double rest_length = 0.0;  // L0 (radii).
 };

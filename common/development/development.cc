@@ -98,8 +98,7 @@ int Development::Divide(int step, int* late_cell) {
     double s, c;
     SinCos(angle, &s, &c);
     const double radius = embryo_.radius[mother];
-    embryo_.position.push_back(embryo_.position[mother] +
-                               Vec2{c, s} * radius);
+    embryo_.position.push_back(embryo_.position[mother] + Vec2{c, s} * radius);
     embryo_.radius.push_back(
         1.0 + params_.size_gain * grn_.Output(mother, OutputChannel::kSize));
     embryo_.angle.push_back(angle);

@@ -37,10 +37,10 @@ enum class DevelopmentStatus {
 
 struct DevelopmentOutcome {
   DevelopmentStatus status = DevelopmentStatus::kOk;
-  std::string reason;       // Why, when status is not kOk.
-  int steps_run = 0;        // Development steps completed.
-  int divisions = 0;        // Divisions that happened.
-  int last_division = -1;   // Step of the last division, -1 if none.
+  std::string reason;      // Why, when status is not kOk.
+  int steps_run = 0;       // Development steps completed.
+  int divisions = 0;       // Divisions that happened.
+  int last_division = -1;  // Step of the last division, -1 if none.
 };
 
 class Development {

@@ -12,15 +12,15 @@ namespace animat {
 inline constexpr int kMaxSignalDelay = 127;
 
 struct DevelopmentParams {
-  int steps = 400;                // Development steps.
-  int max_cells = 32;             // Division stops at this many cells.
-  double divide_threshold = 0.9;  // DIVIDE value that triggers division.
-  int last_division_step = 300;   // A division at this step or later fails.
-  int min_cells = 3;              // Fewer cells at the end fail.
-  double size_gain = 0.5;         // Daughter radius 1 + size_gain * SIZE.
-  int mechanics_substeps = 5;     // Mechanics sub-steps per step.
-  double stiffness = 1.0;         // k_dev, force per radius of overlap.
-  double adhesion_ratio = 0.3;    // Adhesion stiffness / k_dev.
+  int steps = 400;                 // Development steps.
+  int max_cells = 32;              // Division stops at this many cells.
+  double divide_threshold = 0.9;   // DIVIDE value that triggers division.
+  int last_division_step = 300;    // A division at this step or later fails.
+  int min_cells = 3;               // Fewer cells at the end fail.
+  double size_gain = 0.5;          // Daughter radius 1 + size_gain * SIZE.
+  int mechanics_substeps = 5;      // Mechanics sub-steps per step.
+  double stiffness = 1.0;          // k_dev, force per radius of overlap.
+  double adhesion_ratio = 0.3;     // Adhesion stiffness / k_dev.
   double interaction_range = 1.2;  // Pairs interact while d < range * s.
   double mechanics_dt = 0.1;       // x += F * mechanics_dt per sub-step.
 };

@@ -66,9 +66,8 @@ void MorphogenField::SetGeometry(std::span<const Vec2> positions) {
       const double d = Length(positions[k] - positions[i]);
       const double kernel = Exp(-d / params_.kernel_length);
       const double steps = std::floor(d / params_.delay_length + 0.5);
-      const int delay = steps < params_.max_delay
-                            ? static_cast<int>(steps)
-                            : params_.max_delay;
+      const int delay = steps < params_.max_delay ? static_cast<int>(steps)
+                                                  : params_.max_delay;
       kernel_[i * capacity_ + k] = kernel_[k * capacity_ + i] = kernel;
       delay_[i * capacity_ + k] = delay_[k * capacity_ + i] =
           static_cast<uint8_t>(delay);
@@ -113,7 +112,8 @@ void ApplyKernel(int step, int n, int m_count, int capacity,
       for (int m = 0; m < m_count; ++m) acc[m] += w * h[m];
     }
     if constexpr (kM > 0) {
-      for (int m = 0; m < kM; ++m) out[static_cast<size_t>(i) * kM + m] = sum[m];
+      for (int m = 0; m < kM; ++m)
+        out[static_cast<size_t>(i) * kM + m] = sum[m];
     }
   }
 }
@@ -128,8 +128,8 @@ void MorphogenField::Apply(int step, GrnBatch* grn) const {
   const uint8_t* delay = delay_.data();
   const double* history = history_.data();
   switch (m_count) {
-#define ANIMAT_APPLY_CASE(M)                                                \
-  case M:                                                                   \
+#define ANIMAT_APPLY_CASE(M)                                                  \
+  case M:                                                                     \
     ApplyKernel<M>(step, n, m_count, capacity_, kernel, delay, history, sum); \
     break;
     ANIMAT_APPLY_CASE(1)
@@ -142,8 +142,7 @@ void MorphogenField::Apply(int step, GrnBatch* grn) const {
     ANIMAT_APPLY_CASE(8)
 #undef ANIMAT_APPLY_CASE
     default:
-      ApplyKernel<0>(step, n, m_count, capacity_, kernel, delay, history,
-                     sum);
+      ApplyKernel<0>(step, n, m_count, capacity_, kernel, delay, history, sum);
       break;
   }
   for (int m = 0; m < m_count; ++m) {

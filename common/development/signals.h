@@ -73,9 +73,9 @@ class MorphogenField {
   int capacity_;
   int cells_ = 0;
   SignalParams params_;
-  std::vector<double> kernel_;    // capacity x capacity
-  std::vector<uint8_t> delay_;    // capacity x capacity
-  std::vector<double> history_;   // [cell][slot][morphogen]
+  std::vector<double> kernel_;       // capacity x capacity
+  std::vector<uint8_t> delay_;       // capacity x capacity
+  std::vector<double> history_;      // [cell][slot][morphogen]
   mutable std::vector<double> sum_;  // scratch, [cell][morphogen]
 };
 

@@ -124,17 +124,16 @@ EvaluationResult Evaluate(const Genome& genome, const ModelConfig& config,
   Result<Body> body = BuildBody(embryo.position);
   if (!body.ok()) {
     return Failure(EvalStatus::kDegenerateBody,
-                   "degenerate body: " + body.status().message(), cells,
-                   steps);
+                   "degenerate body: " + body.status().message(), cells, steps);
   }
 
   // Positional information frozen at its end-of-development values (§5).
   GrnBatch& grn = development.grn();
   MorphogenField& field = development.field();
   for (int cell = 0; cell < cells; ++cell) {
-    grn.SetInputs(cell, InputValuesAt(embryo.position[cell],
-                                      development.maternal_sources(),
-                                      config.signals));
+    grn.SetInputs(
+        cell, InputValuesAt(embryo.position[cell],
+                            development.maternal_sources(), config.signals));
   }
   grn.FreezeInputs();
   const bool signalling = field.morphogens() > 0;
@@ -162,10 +161,10 @@ EvaluationResult Evaluate(const Genome& genome, const ModelConfig& config,
     if (CheckDue(step, ev.equilibration_steps, ev.check_interval)) {
       const std::string problem = CheckState(state, ev.max_coordinate);
       if (!problem.empty()) {
-        return Failure(EvalStatus::kNumericalFailure,
-                       problem + " at equilibration step " +
-                           std::to_string(step),
-                       cells, steps);
+        return Failure(
+            EvalStatus::kNumericalFailure,
+            problem + " at equilibration step " + std::to_string(step), cells,
+            steps);
       }
     }
     if (observer) {

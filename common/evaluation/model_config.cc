@@ -19,8 +19,8 @@ Status EvaluationParamsFromProto(const v1::EvaluationConfig& m,
   if (m.has_max_coordinate()) p.max_coordinate = m.max_coordinate();
   if (m.has_check_interval()) p.check_interval = m.check_interval();
   Status status = FirstError({
-      RequireIntInRange("evaluation.equilibration_steps",
-                        p.equilibration_steps, 0, 100000000),
+      RequireIntInRange("evaluation.equilibration_steps", p.equilibration_steps,
+                        0, 100000000),
       RequireInRange("evaluation.equilibration_damping",
                      p.equilibration_damping, 0.0, 1.0),
       RequireIntInRange("evaluation.motion_steps", p.motion_steps, 0,

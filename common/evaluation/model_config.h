@@ -15,11 +15,11 @@ namespace animat {
 
 // The evaluation schedule and failure checks (MODEL §8).
 struct EvaluationParams {
-  int equilibration_steps = 200;        // Network stopped.
-  double equilibration_damping = 0.9;   // v *= this after each such step.
-  int motion_steps = 6000;              // Network running.
-  double max_coordinate = 1e6;          // Beyond: numerical failure.
-  int check_interval = 100;             // Steps between state checks.
+  int equilibration_steps = 200;       // Network stopped.
+  double equilibration_damping = 0.9;  // v *= this after each such step.
+  int motion_steps = 6000;             // Network running.
+  double max_coordinate = 1e6;         // Beyond: numerical failure.
+  int check_interval = 100;            // Steps between state checks.
 };
 
 struct ModelConfig {

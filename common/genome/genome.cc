@@ -22,8 +22,8 @@ const char* ElementTypeName(ElementType type) {
 }
 
 const char* InputChannelName(int channel) {
-  static const char* const kNames[kInputChannels] = {
-      "MATERNAL_0", "MATERNAL_1", "MATERNAL_2", "UNIFORM"};
+  static const char* const kNames[kInputChannels] = {"MATERNAL_0", "MATERNAL_1",
+                                                     "MATERNAL_2", "UNIFORM"};
   return channel >= 0 && channel < kInputChannels ? kNames[channel] : "?";
 }
 
@@ -55,24 +55,26 @@ Status ValidateGenome(const Genome& genome) {
       case ElementType::kGInternal:
       case ElementType::kGMorphogen:
         if (e.channel != -1) {
-          return Status::InvalidArgument(
-              where + ".channel: a " + ElementTypeName(e.type) +
-              " element has no channel");
+          return Status::InvalidArgument(where + ".channel: a " +
+                                         ElementTypeName(e.type) +
+                                         " element has no channel");
         }
         break;
       case ElementType::kSIn:
         if (e.channel < 0 || e.channel >= kInputChannels) {
           return Status::InvalidArgument(
-              where + ".channel: an S_IN element needs an input channel "
-                      "(MATERNAL_0, MATERNAL_1, MATERNAL_2 or UNIFORM)");
+              where +
+              ".channel: an S_IN element needs an input channel "
+              "(MATERNAL_0, MATERNAL_1, MATERNAL_2 or UNIFORM)");
         }
         break;
       case ElementType::kSOut:
         if (e.channel < 0 || e.channel >= kOutputChannels) {
           return Status::InvalidArgument(
-              where + ".channel: an S_OUT element needs an output channel "
-                      "(DIVIDE, ROTATE_LEFT, ROTATE_RIGHT, SIZE, EXPAND or "
-                      "CONTRACT)");
+              where +
+              ".channel: an S_OUT element needs an output channel "
+              "(DIVIDE, ROTATE_LEFT, ROTATE_RIGHT, SIZE, EXPAND or "
+              "CONTRACT)");
         }
         break;
       default:

@@ -23,7 +23,12 @@ enum class ElementType : uint8_t {
 };
 
 // Input channels [paper]: three maternal morphogens and a uniform 1.
-enum class InputChannel : uint8_t { kMaternal0, kMaternal1, kMaternal2, kUniform };
+enum class InputChannel : uint8_t {
+  kMaternal0,
+  kMaternal1,
+  kMaternal2,
+  kUniform
+};
 inline constexpr int kInputChannels = 4;
 
 // Output channels [paper].
@@ -42,8 +47,8 @@ inline constexpr size_t kMaxGenomeElements = 10000;
 
 struct Element {
   ElementType type = ElementType::kP;
-  int sign = 1;      // +1 or -1.
-  double x = 0.0;    // Affinity-plane coordinates, finite.
+  int sign = 1;    // +1 or -1.
+  double x = 0.0;  // Affinity-plane coordinates, finite.
   double y = 0.0;
   // For kSIn an InputChannel, for kSOut an OutputChannel, else -1.
   int channel = -1;
@@ -63,9 +68,9 @@ struct Genome {
 // the element: "elements[3].sign: must be +1 or -1, got 0".
 Status ValidateGenome(const Genome& genome);
 
-const char* ElementTypeName(ElementType type);       // "P", "S_OUT", ...
-const char* InputChannelName(int channel);           // "MATERNAL_0", ...
-const char* OutputChannelName(int channel);          // "DIVIDE", ...
+const char* ElementTypeName(ElementType type);  // "P", "S_OUT", ...
+const char* InputChannelName(int channel);      // "MATERNAL_0", ...
+const char* OutputChannelName(int channel);     // "DIVIDE", ...
 
 }  // namespace animat
 

@@ -41,32 +41,34 @@ Result<Genome> GenomeFromProto(const v1::Genome& message) {
         break;
       default:
         return Status::InvalidArgument(
-            where + ".type: must be one of P, G_INTERNAL, G_MORPHOGEN, S_IN, "
-                    "S_OUT, got " +
+            where +
+            ".type: must be one of P, G_INTERNAL, G_MORPHOGEN, S_IN, "
+            "S_OUT, got " +
             std::to_string(m.type()));
     }
     e.sign = m.sign();
     e.x = m.x();
     e.y = m.y();
     const int channel = m.channel();
-    const std::string got =
-        v1::Element::Channel_IsValid(channel)
-            ? v1::Element::Channel_Name(m.channel())
-            : std::to_string(channel);
+    const std::string got = v1::Element::Channel_IsValid(channel)
+                                ? v1::Element::Channel_Name(m.channel())
+                                : std::to_string(channel);
     if (e.type == ElementType::kSIn) {
       if (channel < kFirstInput || channel >= kFirstOutput) {
         return Status::InvalidArgument(
-            where + ".channel: an S_IN element needs an input channel "
-                    "(MATERNAL_0, MATERNAL_1, MATERNAL_2 or UNIFORM), got " +
+            where +
+            ".channel: an S_IN element needs an input channel "
+            "(MATERNAL_0, MATERNAL_1, MATERNAL_2 or UNIFORM), got " +
             got);
       }
       e.channel = channel - kFirstInput;
     } else if (e.type == ElementType::kSOut) {
       if (channel < kFirstOutput || channel >= kFirstOutput + kOutputChannels) {
         return Status::InvalidArgument(
-            where + ".channel: an S_OUT element needs an output channel "
-                    "(DIVIDE, ROTATE_LEFT, ROTATE_RIGHT, SIZE, EXPAND or "
-                    "CONTRACT), got " +
+            where +
+            ".channel: an S_OUT element needs an output channel "
+            "(DIVIDE, ROTATE_LEFT, ROTATE_RIGHT, SIZE, EXPAND or "
+            "CONTRACT), got " +
             got);
       }
       e.channel = channel - kFirstOutput;
@@ -98,7 +100,8 @@ v1::Genome GenomeToProto(const Genome& genome) {
         break;
       case ElementType::kSIn:
         m->set_type(v1::Element::S_IN);
-        m->set_channel(static_cast<v1::Element::Channel>(kFirstInput + e.channel));
+        m->set_channel(
+            static_cast<v1::Element::Channel>(kFirstInput + e.channel));
         break;
       case ElementType::kSOut:
         m->set_type(v1::Element::S_OUT);

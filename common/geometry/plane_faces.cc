@@ -109,9 +109,9 @@ Result<PlaneFaces> FacesOfPlaneGraph(std::span<const Vec2> points,
   const int edge_count = static_cast<int>(edges.size());
   if (static_cast<int>(faces.size()) != edge_count - n + 2) {
     return Status::InvalidArgument(
-        "not a plane graph: " + std::to_string(faces.size()) +
-        " faces for " + std::to_string(n) + " vertices and " +
-        std::to_string(edge_count) + " edges");
+        "not a plane graph: " + std::to_string(faces.size()) + " faces for " +
+        std::to_string(n) + " vertices and " + std::to_string(edge_count) +
+        " edges");
   }
 
   std::vector<double> areas(faces.size());

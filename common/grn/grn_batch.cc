@@ -78,7 +78,8 @@ void GrnBatch::AccumulateSources(int first, int last) {
     const Source& source = sources[s];
     const double* value =
         source.kind == SourceKind::kMorphogen
-            ? &signals_[static_cast<size_t>(net.nodes()[source.node].morphogen) *
+            ? &signals_[static_cast<size_t>(
+                            net.nodes()[source.node].morphogen) *
                         capacity_]
             : &levels_[static_cast<size_t>(source.node) * capacity_];
     for (int k = begin[s]; k < begin[s + 1]; ++k) {

@@ -96,7 +96,8 @@ Network Network::Build(const Genome& genome, const GrnParams& params) {
       node.morphogen = static_cast<int>(net.morphogen_nodes_.size());
       net.morphogen_nodes_.push_back(v);
     }
-    if (node.kind == NodeKind::kInput) net.input_nodes_[node.channel].push_back(v);
+    if (node.kind == NodeKind::kInput)
+      net.input_nodes_[node.channel].push_back(v);
     if (node.kind == NodeKind::kOutput) {
       net.output_nodes_[node.channel].push_back(v);
     }
@@ -216,8 +217,7 @@ Viability Network::CheckViability() const {
     result.reason = "the network has no DIVIDE output";
   } else if (!any_reached(divide)) {
     result.reason = "no path from an input to a DIVIDE output";
-  } else if (output_nodes_[expand].empty() &&
-             output_nodes_[contract].empty()) {
+  } else if (output_nodes_[expand].empty() && output_nodes_[contract].empty()) {
     result.reason = "the network has no EXPAND or CONTRACT output";
   } else if (!any_reached(expand) && !any_reached(contract)) {
     result.reason = "no path from an input to an EXPAND or CONTRACT output";

@@ -45,8 +45,9 @@ Result<ProtoFormat> ProtoFormatForPath(const std::string& path) {
     return ProtoFormat::kBinary;
   }
   return Status::InvalidArgument(
-      path + ": unknown file type; use .json, .txtpb (or .textproto, .pbtxt) "
-             "or .binpb");
+      path +
+      ": unknown file type; use .json, .txtpb (or .textproto, .pbtxt) "
+      "or .binpb");
 }
 
 Status ParseProto(const std::string& text, ProtoFormat format,
@@ -68,9 +69,8 @@ Status ParseProto(const std::string& text, ProtoFormat format,
       TextErrors errors;
       parser.RecordErrorsTo(&errors);
       if (!parser.ParseFromString(text, message)) {
-        return Status::InvalidArgument(errors.text().empty()
-                                           ? "malformed text format"
-                                           : errors.text());
+        return Status::InvalidArgument(
+            errors.text().empty() ? "malformed text format" : errors.text());
       }
       return Status::Ok();
     }
@@ -94,10 +94,9 @@ Status ReadProtoFile(const std::string& path,
   if (!status.ok()) {
     // Text-format errors start with "line:column", which reads best glued
     // to the path.
-    const bool located = *format == ProtoFormat::kText &&
-                         !status.message().empty() &&
-                         std::isdigit(static_cast<unsigned char>(
-                             status.message()[0]));
+    const bool located =
+        *format == ProtoFormat::kText && !status.message().empty() &&
+        std::isdigit(static_cast<unsigned char>(status.message()[0]));
     return Status::InvalidArgument(path + (located ? ":" : ": ") +
                                    status.message());
   }
@@ -113,8 +112,7 @@ std::string SerializeProto(const google::protobuf::Message& message,
       options.add_whitespace = true;
       options.always_print_primitive_fields = true;
       options.preserve_proto_field_names = true;
-      (void)google::protobuf::util::MessageToJsonString(message, &out,
-                                                        options);
+      (void)google::protobuf::util::MessageToJsonString(message, &out, options);
       break;
     }
     case ProtoFormat::kText:

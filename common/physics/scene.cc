@@ -11,8 +11,8 @@ namespace {
 Status CheckNode(const std::string& field, uint32_t index, int nodes) {
   if (index >= static_cast<uint32_t>(nodes)) {
     return Status::InvalidArgument(field + ": node " + std::to_string(index) +
-                                   " does not exist (" +
-                                   std::to_string(nodes) + " nodes)");
+                                   " does not exist (" + std::to_string(nodes) +
+                                   " nodes)");
   }
   return Status::Ok();
 }
@@ -56,8 +56,7 @@ Result<Scene> SceneFromProto(const v1::Scene& message) {
     if (!status.ok()) return status;
     if (spring.a() == spring.b()) {
       return Status::InvalidArgument(where + ": joins node " +
-                                     std::to_string(spring.a()) +
-                                     " to itself");
+                                     std::to_string(spring.a()) + " to itself");
     }
     scene.body.springs.push_back({static_cast<int>(spring.a()),
                                   static_cast<int>(spring.b()),

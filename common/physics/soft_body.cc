@@ -62,8 +62,7 @@ void SoftBody::AddSpringForces(const MotionState& state, Vec2* force) const {
   }
 }
 
-void SoftBody::AddPressureForces(const MotionState& state,
-                                 Vec2* force) const {
+void SoftBody::AddPressureForces(const MotionState& state, Vec2* force) const {
   const Vec2* x = state.position.data();
   const double cp = params_.pressure;
   for (size_t c = 0; c < rest_area_.size(); ++c) {
@@ -100,8 +99,8 @@ void SoftBody::AddDragForces(const MotionState& state, Vec2* force) const {
     const double vt = Dot(vc, t);
     const double vn = Dot(vc, n);
     // -d l sign(v) v^2 = -d l |v| v.
-    const Vec2 f = t * (-dt * l * std::fabs(vt) * vt) +
-                   n * (-dn * l * std::fabs(vn) * vn);
+    const Vec2 f =
+        t * (-dt * l * std::fabs(vt) * vt) + n * (-dn * l * std::fabs(vn) * vn);
     const Vec2 half = f * 0.5;
     force[a] += half;
     force[b] += half;
@@ -142,8 +141,8 @@ std::string CheckState(const MotionState& state, double max_coordinate) {
     if (std::fabs(x.x) > max_coordinate || std::fabs(x.y) > max_coordinate) {
       char bound[32];
       std::snprintf(bound, sizeof(bound), "%g", max_coordinate);
-      return "node " + std::to_string(i) + " left the region |x|, |y| <= " +
-             bound;
+      return "node " + std::to_string(i) +
+             " left the region |x|, |y| <= " + bound;
     }
   }
   return "";

@@ -56,12 +56,9 @@ std::string ShortConfig() {
 }
 
 TEST(CliTest, RandomGenomeIsAPureFunctionOfTheSeed) {
-  ASSERT_EQ(Animat("random-genome --seed 7 -o " + Temp("a.json")).exit_code,
-            0);
-  ASSERT_EQ(Animat("random-genome --seed 7 -o " + Temp("b.json")).exit_code,
-            0);
-  ASSERT_EQ(Animat("random-genome --seed 8 -o " + Temp("c.json")).exit_code,
-            0);
+  ASSERT_EQ(Animat("random-genome --seed 7 -o " + Temp("a.json")).exit_code, 0);
+  ASSERT_EQ(Animat("random-genome --seed 7 -o " + Temp("b.json")).exit_code, 0);
+  ASSERT_EQ(Animat("random-genome --seed 8 -o " + Temp("c.json")).exit_code, 0);
   EXPECT_EQ(*ReadFile(Temp("a.json")), *ReadFile(Temp("b.json")));
   EXPECT_NE(*ReadFile(Temp("a.json")), *ReadFile(Temp("c.json")));
   v1::Genome message;
@@ -81,8 +78,9 @@ TEST(CliTest, RandomGenomeTakesUnitsAndTextFormat) {
 }
 
 TEST(CliTest, GrnPrintsOneRowPerStepInNodeOrder) {
-  const Outcome run = Animat("grn --genome " + testing::TestData("genomes/example.json") +
-                         " --inputs 0,0,0,1 --steps 3");
+  const Outcome run =
+      Animat("grn --genome " + testing::TestData("genomes/example.json") +
+             " --inputs 0,0,0,1 --steps 3");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const std::vector<std::string> lines = Lines(run.output);
   ASSERT_EQ(lines.size(), 4u);
@@ -94,16 +92,17 @@ TEST(CliTest, GrnPrintsOneRowPerStepInNodeOrder) {
 }
 
 TEST(CliTest, GrnRejectsAWrongNumberOfInputs) {
-  const Outcome run = Animat("grn --genome " + testing::TestData("genomes/example.json") +
-                         " --inputs 0,0,1 --steps 3");
+  const Outcome run =
+      Animat("grn --genome " + testing::TestData("genomes/example.json") +
+             " --inputs 0,0,1 --steps 3");
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_NE(run.output.find("--inputs"), std::string::npos) << run.output;
 }
 
 TEST(CliTest, SimulatePrintsStatusAndFitness) {
-  const Outcome run =
-      Animat("simulate --genome " + testing::TestData("genomes/seed-1198.json") +
-             " --config " + ShortConfig());
+  const Outcome run = Animat("simulate --genome " +
+                             testing::TestData("genomes/seed-1198.json") +
+                             " --config " + ShortConfig());
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const std::vector<std::string> lines = Lines(run.output);
   ASSERT_GE(lines.size(), 4u);
@@ -114,8 +113,9 @@ TEST(CliTest, SimulatePrintsStatusAndFitness) {
 }
 
 TEST(CliTest, SimulateOfAFailureHasAReasonAndNoFitness) {
-  const Outcome run = Animat("simulate --genome " +
-                         testing::TestData("genomes/seed-1-nonviable.json"));
+  const Outcome run =
+      Animat("simulate --genome " +
+             testing::TestData("genomes/seed-1-nonviable.json"));
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find("status: non_viable"), std::string::npos);
   EXPECT_NE(run.output.find("reason: "), std::string::npos);
@@ -123,8 +123,9 @@ TEST(CliTest, SimulateOfAFailureHasAReasonAndNoFitness) {
 }
 
 TEST(CliTest, SimulateJsonIsAnEvaluationResult) {
-  const Outcome run = Animat("simulate --json --genome " +
-                         testing::TestData("genomes/seed-2-too-few-cells.json"));
+  const Outcome run =
+      Animat("simulate --json --genome " +
+             testing::TestData("genomes/seed-2-too-few-cells.json"));
   ASSERT_EQ(run.exit_code, 0) << run.output;
   v1::EvaluationResult result;
   ASSERT_TRUE(ParseProto(run.output, ProtoFormat::kJson, &result).ok())
@@ -135,10 +136,9 @@ TEST(CliTest, SimulateJsonIsAnEvaluationResult) {
 
 TEST(CliTest, SimulateWritesACompleteTrace) {
   const std::string trace_path = Temp("trace.json");
-  const Outcome run =
-      Animat("simulate --genome " + testing::TestData("genomes/seed-1198.json") +
-             " --config " + ShortConfig() + " --trace " + trace_path +
-             " --every 50");
+  const Outcome run = Animat(
+      "simulate --genome " + testing::TestData("genomes/seed-1198.json") +
+      " --config " + ShortConfig() + " --trace " + trace_path + " --every 50");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   v1::Trace trace;
   ASSERT_TRUE(ReadProtoFile(trace_path, &trace).ok());
@@ -200,8 +200,8 @@ TEST(CliTest, BadConfigNamesTheField) {
   const std::string config = Temp("bad-config.txtpb");
   ASSERT_TRUE(WriteFile(config, "physics { actuation_max: 0.5 }\n").ok());
   const Outcome run = Animat("simulate --genome " +
-                         testing::TestData("genomes/seed-1198.json") +
-                         " --config " + config);
+                             testing::TestData("genomes/seed-1198.json") +
+                             " --config " + config);
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.output.find("physics.actuation_max"), std::string::npos)
       << run.output;
@@ -209,9 +209,9 @@ TEST(CliTest, BadConfigNamesTheField) {
 
 TEST(CliTest, SceneRunsAHandMadeBody) {
   const std::string trace_path = Temp("scene-trace.json");
-  const Outcome run = Animat("scene --scene " +
-                         testing::TestData("scenes/triangle.txtpb") +
-                         " --steps 100 --every 25 --trace " + trace_path);
+  const Outcome run =
+      Animat("scene --scene " + testing::TestData("scenes/triangle.txtpb") +
+             " --steps 100 --every 25 --trace " + trace_path);
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find("status: ok"), std::string::npos);
   EXPECT_NE(run.output.find("steps: 100"), std::string::npos);

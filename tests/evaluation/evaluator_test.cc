@@ -107,8 +107,7 @@ class PhaseRecorder : public EvaluationObserver {
     actuation = static_cast<int>(expand.size() + contract.size());
   }
   void OnMotionStep(MotionPhase phase, int step, const MotionState&,
-                    std::span<const double>,
-                    std::span<const double>) override {
+                    std::span<const double>, std::span<const double>) override {
     (phase == MotionPhase::kEquilibration ? equilibration : motion)
         .push_back(step);
   }
@@ -175,10 +174,10 @@ TEST(EvaluatorTest, ResultConvertsToProto) {
   EXPECT_EQ(m.status(), v1::EvaluationResult::OK);
   ASSERT_TRUE(m.has_fitness());  // A fitness of 0 is still present.
   EXPECT_EQ(m.fitness(), 0.0);
-  EXPECT_EQ(EvaluationResultToProto({EvalStatus::kInvalidGenome, "", {}, 0, 0,
-                                     0})
-                .status(),
-            v1::EvaluationResult::INVALID_GENOME);
+  EXPECT_EQ(
+      EvaluationResultToProto({EvalStatus::kInvalidGenome, "", {}, 0, 0, 0})
+          .status(),
+      v1::EvaluationResult::INVALID_GENOME);
 }
 
 }  // namespace

@@ -28,10 +28,10 @@ class GoldenTest : public ::testing::TestWithParam<Golden> {};
 TEST_P(GoldenTest, FitnessBitsAndFinalStateAreFixed) {
   const Golden& golden = GetParam();
   v1::Genome message;
-  ASSERT_TRUE(ReadProtoFile(
-                  testing::TestData(std::string("genomes/") + golden.genome),
-                  &message)
-                  .ok());
+  ASSERT_TRUE(
+      ReadProtoFile(testing::TestData(std::string("genomes/") + golden.genome),
+                    &message)
+          .ok());
   Result<Genome> genome = GenomeFromProto(message);
   ASSERT_TRUE(genome.ok());
   const EvaluationResult r = Evaluate(*genome, ModelConfig{});
@@ -47,14 +47,11 @@ INSTANTIATE_TEST_SUITE_P(
     Genomes, GoldenTest,
     ::testing::Values(
         // A 32-cell body with 40 chambers (the benchmark genome).
-        Golden{"seed-1198.json", 0x3fbba73be0ef9f5eull,
-               0xb803f0ffdb5f8569ull},
+        Golden{"seed-1198.json", 0x3fbba73be0ef9f5eull, 0xb803f0ffdb5f8569ull},
         // A chain of 32 cells (no chambers), the best random mover.
-        Golden{"seed-1203.json", 0x40008b7cce86237eull,
-               0xaf01c57d3a431361ull},
+        Golden{"seed-1203.json", 0x40008b7cce86237eull, 0xaf01c57d3a431361ull},
         // A compact body that barely moves (fitness ~1.6e-9).
-        Golden{"seed-139.json", 0x3e1b71602ce579ccull,
-               0xc99bb08802bdb1e4ull}));
+        Golden{"seed-139.json", 0x3e1b71602ce579ccull, 0xc99bb08802bdb1e4ull}));
 
 }  // namespace
 }  // namespace animat

@@ -15,8 +15,7 @@ namespace {
 std::string ConfigsDir() { return std::string(ANIMAT_SOURCE_DIR) + "/configs"; }
 
 TEST(ModelConfigTest, DefaultFileEqualsBuiltInDefaults) {
-  Result<ModelConfig> config =
-      ReadConfigFile(ConfigsDir() + "/default.txtpb");
+  Result<ModelConfig> config = ReadConfigFile(ConfigsDir() + "/default.txtpb");
   ASSERT_TRUE(config.ok()) << config.status().ToString();
   const std::string from_file =
       SerializeProto(ConfigToProto(*config), ProtoFormat::kText);
@@ -90,8 +89,7 @@ void ExpectRejected(const v1::Config& message, const std::string& field) {
   EXPECT_EQ(status.code(), StatusCode::kInvalidArgument);
   EXPECT_EQ(status.message().rfind(field + ":", 0), 0u)
       << status.message() << " should start with " << field;
-  EXPECT_EQ(SerializeProto(ConfigToProto(config), ProtoFormat::kText),
-            before);
+  EXPECT_EQ(SerializeProto(ConfigToProto(config), ProtoFormat::kText), before);
 }
 
 TEST(ModelConfigTest, RejectsInvalidConstantsNamingTheField) {
