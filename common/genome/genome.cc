@@ -47,8 +47,11 @@ Status ValidateGenome(const Genome& genome) {
       return Status::InvalidArgument(where + ".sign: must be +1 or -1, got " +
                                      std::to_string(e.sign));
     }
-    if (!std::isfinite(e.x) || !std::isfinite(e.y)) {
-      return Status::InvalidArgument(where + ": coordinates must be finite");
+    if (!std::isfinite(e.x)) {
+      return Status::InvalidArgument(where + ".x: must be finite");
+    }
+    if (!std::isfinite(e.y)) {
+      return Status::InvalidArgument(where + ".y: must be finite");
     }
     switch (e.type) {
       case ElementType::kP:
