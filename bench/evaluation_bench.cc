@@ -4,7 +4,9 @@
 //   build/bin/animat-bench [--benchmark_filter=...]
 //
 // BM_Evaluate reports ms per full evaluation (6600 steps); the per-step
-// benchmarks report us per simulation step of the motion phase.
+// benchmarks report us per simulation step of the motion phase: physics
+// (BM_PhysicsStep), and the network side (BM_GrnStep) split into its
+// network update (BM_NetworkStep) and morphogen signals (BM_SignalStep).
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
@@ -113,6 +115,23 @@ void BM_NetworkStep(benchmark::State& state) {
   state.counters["weights"] = d.network.weight_value().size();
 }
 BENCHMARK(BM_NetworkStep)->Unit(benchmark::kMicrosecond);
+
+// One motion step of the whole network side: signals, then network.
+void BM_GrnStep(benchmark::State& state) {
+  Developed d(BenchGenome());
+  GrnBatch& grn = d.development.grn();
+  MorphogenField& field = d.development.field();
+  int step = d.config.development.steps;
+  for (auto _ : state) {
+    field.Record(step, grn);
+    field.Apply(step, &grn);
+    grn.Step();
+    ++step;
+  }
+  state.counters["nodes"] = d.network.node_count();
+  state.counters["morphogens"] = field.morphogens();
+}
+BENCHMARK(BM_GrnStep)->Unit(benchmark::kMicrosecond);
 
 void BM_SignalStep(benchmark::State& state) {
   Developed d(BenchGenome());

@@ -43,6 +43,7 @@ MorphogenField::MorphogenField(int morphogens, int capacity,
 void MorphogenField::AddCell() {
   assert(cells_ < capacity_);
   const int cell = cells_++;
+  if (morphogens_ == 0) return;  // No history to keep.
   for (int s = 0; s < kHistory; ++s) {
     std::fill_n(slot(s, cell), morphogens_, 0.0);
   }
@@ -51,6 +52,7 @@ void MorphogenField::AddCell() {
 void MorphogenField::CopyCell(int mother) {
   assert(cells_ < capacity_ && mother >= 0 && mother < cells_);
   const int cell = cells_++;
+  if (morphogens_ == 0) return;  // No history to copy.
   for (int s = 0; s < kHistory; ++s) {
     std::copy_n(slot(s, mother), morphogens_, slot(s, cell));
   }

@@ -63,6 +63,7 @@ class MorphogenField {
 
  private:
   // The cell's values entering `step` (any integer; the ring wraps).
+  // Precondition: morphogens_ > 0.
   double* slot(int step, int cell) {
     return &history_[(static_cast<size_t>(cell) * kHistory +
                       (static_cast<size_t>(step) & (kHistory - 1))) *
