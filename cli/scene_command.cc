@@ -73,12 +73,7 @@ int Run(const Options& o) {
   }
 
   StateHash hash;
-  for (size_t i = 0; i < state.position.size(); ++i) {
-    hash.AddDouble(state.position[i].x);
-    hash.AddDouble(state.position[i].y);
-    hash.AddDouble(state.velocity[i].x);
-    hash.AddDouble(state.velocity[i].y);
-  }
+  HashMotionState(state, &hash);
   v1::EvaluationResult* result = trace.mutable_result();
   result->set_status(problem.empty() ? v1::EvaluationResult::OK
                                      : v1::EvaluationResult::NUMERICAL_FAILURE);

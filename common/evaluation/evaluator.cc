@@ -31,12 +31,7 @@ void ReadActuation(const GrnBatch& grn, std::vector<double>* expand,
 
 uint64_t HashFinalState(const MotionState& state, const GrnBatch& grn) {
   StateHash hash;
-  for (size_t i = 0; i < state.position.size(); ++i) {
-    hash.AddDouble(state.position[i].x);
-    hash.AddDouble(state.position[i].y);
-    hash.AddDouble(state.velocity[i].x);
-    hash.AddDouble(state.velocity[i].y);
-  }
+  HashMotionState(state, &hash);
   for (int node = 0; node < grn.network().node_count(); ++node) {
     for (int cell = 0; cell < grn.cells(); ++cell) {
       hash.AddDouble(grn.level(cell, node));

@@ -148,6 +148,15 @@ std::string CheckState(const MotionState& state, double max_coordinate) {
   return "";
 }
 
+void HashMotionState(const MotionState& state, StateHash* hash) {
+  for (size_t i = 0; i < state.position.size(); ++i) {
+    hash->AddDouble(state.position[i].x);
+    hash->AddDouble(state.position[i].y);
+    hash->AddDouble(state.velocity[i].x);
+    hash->AddDouble(state.velocity[i].y);
+  }
+}
+
 Vec2 CentreOfMass(const MotionState& state) {
   if (state.position.empty()) return {};
   Vec2 sum;

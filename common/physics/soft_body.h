@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "common/base/hash.h"
 #include "common/base/vec2.h"
 #include "common/body/body.h"
 #include "common/physics/physics_params.h"
@@ -69,6 +70,10 @@ class SoftBody {
 // within max_coordinate. Returns "" when all hold, else the reason
 // ("non-finite velocity of node 3").
 std::string CheckState(const MotionState& state, double max_coordinate);
+
+// Adds the bits of every position and velocity, node by node (x, y, vx,
+// vy), to `hash`.
+void HashMotionState(const MotionState& state, StateHash* hash);
 
 // Centre of mass (equal masses): the mean position, summed in node order.
 Vec2 CentreOfMass(const MotionState& state);

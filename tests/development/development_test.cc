@@ -24,6 +24,7 @@
 #include "common/genome/random_genome.h"
 #include "common/grn/grn_params.h"
 #include "common/grn/network.h"
+#include "tests/genome_builder.h"
 #include "tests/test_util.h"
 
 namespace animat {
@@ -35,16 +36,7 @@ bool Contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
 
-Element MakeElement(ElementType type, int sign, double x, double y,
-                    int channel = -1) {
-  Element e;
-  e.type = type;
-  e.sign = sign;
-  e.x = x;
-  e.y = y;
-  e.channel = channel;
-  return e;
-}
+using testing::MakeElement;
 
 Element Output(OutputChannel channel, double x, double y, int sign = 1) {
   return MakeElement(ElementType::kSOut, sign, x, y, static_cast<int>(channel));

@@ -18,21 +18,13 @@
 #include "common/grn/grn_batch.h"
 #include "common/grn/grn_params.h"
 #include "common/grn/network.h"
+#include "tests/genome_builder.h"
 #include "tests/test_util.h"
 
 namespace animat {
 namespace {
 
-Element MakeElement(ElementType type, int sign, double x, double y,
-                    int channel = -1) {
-  Element e;
-  e.type = type;
-  e.sign = sign;
-  e.x = x;
-  e.y = y;
-  e.channel = channel;
-  return e;
-}
+using testing::MakeElement;
 
 // UNIFORM excites one unit whose only factor is a morphogen (placed far from
 // every region, so it regulates nothing): the unit's level rises towards

@@ -17,54 +17,13 @@
 #include <vector>
 
 #include "common/base/vec2.h"
+#include "tests/geometry/point_source.h"
 
 namespace animat {
 
-// Lets gtest print edges in failure messages (found by ADL).
-inline void PrintTo(const IndexEdge& e, std::ostream* os) {
-  *os << e.a << "-" << e.b;
-}
-
 namespace {
 
-// Fixed-seed points. The double recipe (53 high bits) is written out so the
-// sets are the same with every standard library.
-class PointSource {
- public:
-  explicit PointSource(uint64_t seed) : engine_(seed) {}
-
-  double Uniform(double lo, double hi) {
-    const double u = static_cast<double>(engine_() >> 11) * 0x1.0p-53;
-    return lo + (hi - lo) * u;
-  }
-
-  std::vector<Vec2> InSquare(int n) {
-    std::vector<Vec2> points;
-    for (int i = 0; i < n; ++i) {
-      points.push_back({Uniform(0, 1), Uniform(0, 1)});
-    }
-    return points;
-  }
-
-  // n distinct points of the integer grid [0, side)^2, in random order:
-  // many equal distances and cocircular quadruples.
-  std::vector<Vec2> OnGrid(int n, int side) {
-    std::vector<Vec2> grid;
-    for (int x = 0; x < side; ++x) {
-      for (int y = 0; y < side; ++y) {
-        grid.push_back({static_cast<double>(x), static_cast<double>(y)});
-      }
-    }
-    for (int i = static_cast<int>(grid.size()) - 1; i > 0; --i) {
-      std::swap(grid[i], grid[engine_() % static_cast<uint64_t>(i + 1)]);
-    }
-    grid.resize(n);
-    return grid;
-  }
-
- private:
-  std::mt19937_64 engine_;
-};
+using testing::PointSource;
 
 // Twice the signed area of a, b, c, written out independently of Orient.
 double TwiceArea(Vec2 a, Vec2 b, Vec2 c) {
@@ -113,7 +72,7 @@ void ExpectSortedAndPlane(std::span<const Vec2> p,
   const int n = static_cast<int>(p.size());
   for (const IndexEdge& e : edges) {
     if (!(0 <= e.a && e.a < e.b && e.b < n)) {
-      ADD_FAILURE() << "bad edge " << testing::PrintToString(e);
+      ADD_FAILURE() << "bad edge " << ::testing::PrintToString(e);
     }
   }
   EXPECT_TRUE(std::is_sorted(edges.begin(), edges.end()));
@@ -123,8 +82,8 @@ void ExpectSortedAndPlane(std::span<const Vec2> p,
       const IndexEdge& e = edges[i];
       const IndexEdge& f = edges[j];
       if (ReferenceProperCross(p[e.a], p[e.b], p[f.a], p[f.b])) {
-        ADD_FAILURE() << testing::PrintToString(e) << " crosses "
-                      << testing::PrintToString(f);
+        ADD_FAILURE() << ::testing::PrintToString(e) << " crosses "
+                      << ::testing::PrintToString(f);
       }
     }
   }
@@ -281,7 +240,7 @@ TEST(GabrielTest, MatchesBruteForceOnRandomPoints) {
   PointSource source(20240611);
   for (int n = 2; n <= 40; ++n) {
     for (int set = 0; set < 3; ++set) {
-      SCOPED_TRACE(testing::Message() << "n=" << n << " set=" << set);
+      SCOPED_TRACE(::testing::Message() << "n=" << n << " set=" << set);
       ExpectMatchesBruteForce(source.InSquare(n));
     }
   }
@@ -291,7 +250,7 @@ TEST(GabrielTest, MatchesBruteForceOnIntegerPointsWithTies) {
   PointSource source(7);
   for (int n = 3; n <= 36; ++n) {
     for (int set = 0; set < 2; ++set) {
-      SCOPED_TRACE(testing::Message() << "n=" << n << " set=" << set);
+      SCOPED_TRACE(::testing::Message() << "n=" << n << " set=" << set);
       ExpectMatchesBruteForce(source.OnGrid(n, 7));
     }
   }
@@ -405,7 +364,7 @@ TEST(GabrielTest, EvenRegularPolygonMatchesBruteForce) {
     const std::vector<IndexEdge> edges = PlaneGabrielGraph(points);
     for (const IndexEdge& side : Sides(n)) {
       EXPECT_TRUE(std::binary_search(edges.begin(), edges.end(), side))
-          << testing::PrintToString(side);
+          << ::testing::PrintToString(side);
     }
     ExpectMatchesBruteForce(points);
   }

@@ -22,53 +22,13 @@
 #include "common/base/vec2.h"
 #include "common/geometry/gabriel.h"
 #include "common/geometry/polygon.h"
+#include "tests/geometry/point_source.h"
 
 namespace animat {
 
-// Lets gtest print edges in failure messages (found by ADL).
-inline void PrintTo(const IndexEdge& e, std::ostream* os) {
-  *os << e.a << "-" << e.b;
-}
-
 namespace {
 
-// Fixed-seed points; the double recipe is written out so the sets are the
-// same with every standard library.
-class PointSource {
- public:
-  explicit PointSource(uint64_t seed) : engine_(seed) {}
-
-  double Uniform(double lo, double hi) {
-    const double u = static_cast<double>(engine_() >> 11) * 0x1.0p-53;
-    return lo + (hi - lo) * u;
-  }
-
-  std::vector<Vec2> InSquare(int n) {
-    std::vector<Vec2> points;
-    for (int i = 0; i < n; ++i) {
-      points.push_back({Uniform(0, 1), Uniform(0, 1)});
-    }
-    return points;
-  }
-
-  // n distinct points of the integer grid [0, side)^2, in random order.
-  std::vector<Vec2> OnGrid(int n, int side) {
-    std::vector<Vec2> grid;
-    for (int x = 0; x < side; ++x) {
-      for (int y = 0; y < side; ++y) {
-        grid.push_back({static_cast<double>(x), static_cast<double>(y)});
-      }
-    }
-    for (int i = static_cast<int>(grid.size()) - 1; i > 0; --i) {
-      std::swap(grid[i], grid[engine_() % static_cast<uint64_t>(i + 1)]);
-    }
-    grid.resize(n);
-    return grid;
-  }
-
- private:
-  std::mt19937_64 engine_;
-};
+using testing::PointSource;
 
 double Area(std::span<const Vec2> points, const std::vector<int>& walk) {
   return WalkArea(points.data(), std::span<const int>(walk));
@@ -210,7 +170,7 @@ void ExpectValidFaces(std::span<const Vec2> points,
   for (size_t i = 0; i < edges.size(); ++i) {
     const IndexEdge key = Undirected(edges[i].a, edges[i].b);
     const std::vector<int>& by = sides[key];
-    ASSERT_EQ(by.size(), 2u) << testing::PrintToString(key);
+    ASSERT_EQ(by.size(), 2u) << ::testing::PrintToString(key);
     const int outer_count =
         static_cast<int>(std::count(by.begin(), by.end(), -1));
     const bool on_skin = std::binary_search(faces.outer_edges.begin(),
@@ -221,7 +181,7 @@ void ExpectValidFaces(std::span<const Vec2> points,
                     on_skin == (outer_count > 0) &&
                     (!on_skin || outer_count == (bridges[i] ? 2 : 1));
     if (!ok) {
-      ADD_FAILURE() << "edge " << testing::PrintToString(key)
+      ADD_FAILURE() << "edge " << ::testing::PrintToString(key)
                     << (bridges[i] ? " (a bridge)" : "") << " borders faces "
                     << by[0] << " and " << by[1] << " (-1: outer)"
                     << (on_skin ? ", on the skin" : ", not on the skin");
@@ -250,7 +210,7 @@ TEST(PlaneFacesTest, ChambersOfRandomGabrielGraphsTileTheBody) {
   PointSource source(1234);
   for (int n = 2; n <= 40; ++n) {
     for (int set = 0; set < 2; ++set) {
-      SCOPED_TRACE(testing::Message() << "n=" << n << " set=" << set);
+      SCOPED_TRACE(::testing::Message() << "n=" << n << " set=" << set);
       ExpectValidGabrielFaces(source.InSquare(n));
     }
   }
@@ -260,7 +220,7 @@ TEST(PlaneFacesTest, ChambersOfGabrielGraphsWithTiesTileTheBody) {
   PointSource source(77);
   for (int n = 2; n <= 36; ++n) {
     for (int set = 0; set < 2; ++set) {
-      SCOPED_TRACE(testing::Message() << "n=" << n << " set=" << set);
+      SCOPED_TRACE(::testing::Message() << "n=" << n << " set=" << set);
       ExpectValidGabrielFaces(source.OnGrid(n, 6));
     }
   }

@@ -23,6 +23,7 @@
 #include "common/genome/random_genome.h"
 #include "common/grn/grn_params.h"
 #include "common/grn/network.h"
+#include "tests/genome_builder.h"
 
 namespace animat {
 namespace {
@@ -33,27 +34,12 @@ constexpr double kDt = 0.05;  // MODEL §3.
 // Agreement between the code (its own exp and tanh) and std::exp/std::tanh.
 constexpr double kTrajectoryTolerance = 1e-14;
 
-Element P(double x, double y, int sign = 1) {
-  return {ElementType::kP, sign, x, y, -1};
-}
-Element GInt(double x, double y, int sign = 1) {
-  return {ElementType::kGInternal, sign, x, y, -1};
-}
-Element GMor(double x, double y, int sign = 1) {
-  return {ElementType::kGMorphogen, sign, x, y, -1};
-}
-Element In(InputChannel channel, double x, double y, int sign = 1) {
-  return {ElementType::kSIn, sign, x, y, static_cast<int>(channel)};
-}
-Element Out(OutputChannel channel, double x, double y, int sign = 1) {
-  return {ElementType::kSOut, sign, x, y, static_cast<int>(channel)};
-}
-
-Genome MakeGenome(std::initializer_list<Element> elements) {
-  Genome genome;
-  genome.elements = elements;
-  return genome;
-}
+using testing::GInt;
+using testing::GMor;
+using testing::In;
+using testing::MakeGenome;
+using testing::Out;
+using testing::P;
 
 Network Build(const Genome& genome) {
   const Status status = ValidateGenome(genome);
@@ -269,7 +255,7 @@ TEST(GrnBatchTest, TrajectoryFollowsModelFormula) {
     unit = ModelStep(unit, a_unit);
     out = ModelStep(out, a_out);
     batch.Step();
-    SCOPED_TRACE(testing::Message() << "step " << step);
+    SCOPED_TRACE(::testing::Message() << "step " << step);
     EXPECT_NEAR(batch.level(0, 1), unit, kTrajectoryTolerance);
     EXPECT_NEAR(batch.level(0, 2), out, kTrajectoryTolerance);
     EXPECT_EQ(batch.level(0, 0), 1.0);
@@ -295,7 +281,7 @@ TEST(GrnBatchTest, UpdateIsSynchronous) {
   };
   for (const Order& order : {Order{MakeGenome({in, pa, ga, pb, gb}), 1, 2},
                              Order{MakeGenome({pb, gb, in, pa, ga}), 2, 0}}) {
-    SCOPED_TRACE(testing::Message() << "A is node " << order.a);
+    SCOPED_TRACE(::testing::Message() << "A is node " << order.a);
     const Network net = Build(order.genome);
     ASSERT_EQ(net.node_count(), 3);
     ASSERT_NEAR(net.Weight(SourceKind::kLevel, order.a, order.b), w_ab, 1e-13);
@@ -315,7 +301,7 @@ TEST(GrnBatchTest, UpdateIsSynchronous) {
       a = next_a;
       b = next_b;
       batch.Step();
-      SCOPED_TRACE(testing::Message() << "step " << step);
+      SCOPED_TRACE(::testing::Message() << "step " << step);
       EXPECT_NEAR(batch.level(0, order.a), a, kTrajectoryTolerance);
       EXPECT_NEAR(batch.level(0, order.b), b, kTrajectoryTolerance);
     }
@@ -402,8 +388,8 @@ TEST(GrnBatchTest, StronglyExcitedLevelsStayWithinOne) {
 TEST(GrnBatchTest, OutputIsMaximumOverTheChannelsNodes) {
   std::array<double, 3> offsets = {0.5, 1.5, 2.5};
   do {
-    SCOPED_TRACE(testing::Message() << "offsets " << offsets[0] << " "
-                                    << offsets[1] << " " << offsets[2]);
+    SCOPED_TRACE(::testing::Message() << "offsets " << offsets[0] << " "
+                                      << offsets[1] << " " << offsets[2]);
     const Network net = Build(
         MakeGenome({In(InputChannel::kUniform, 0, 0), P(1, 0), GInt(10, 0),
                     Out(OutputChannel::kDivide, 10, offsets[0]),
@@ -523,7 +509,7 @@ TEST(GrnBatchTest, CellsEvolveIndependently) {
   for (int g = 0; g < 3; ++g) {
     Genome genome;
     ASSERT_TRUE(NextRandomGenomeWithMorphogens(31, &individual, &genome));
-    SCOPED_TRACE(testing::Message() << "individual " << individual - 1);
+    SCOPED_TRACE(::testing::Message() << "individual " << individual - 1);
     const Network net = Build(genome);
     constexpr int kCells = 4;
     GrnBatch together(net, GrnParams{}, kCells + 1);
@@ -577,7 +563,7 @@ TEST(GrnBatchTest, FreezeInputsIsBitIdenticalToNotFreezing) {
   for (int g = 0; g < 3; ++g) {
     Genome genome;
     ASSERT_TRUE(NextRandomGenomeWithMorphogens(41, &individual, &genome));
-    SCOPED_TRACE(testing::Message() << "individual " << individual - 1);
+    SCOPED_TRACE(::testing::Message() << "individual " << individual - 1);
     const Network net = Build(genome);
     constexpr int kCells = 5;
     GrnBatch plain(net, GrnParams{}, kCells);
@@ -740,7 +726,7 @@ TEST(GrnBatchTest, UnitMakingBothKindsUsesLevelAndSignal) {
     unit = ModelStep(unit, w_in);
     out = ModelStep(out, a_out);
     batch.Step();
-    SCOPED_TRACE(testing::Message() << "step " << step);
+    SCOPED_TRACE(::testing::Message() << "step " << step);
     EXPECT_NEAR(batch.level(0, 1), unit, kTrajectoryTolerance);
     EXPECT_NEAR(batch.level(0, 2), out, kTrajectoryTolerance);
   }
@@ -757,7 +743,7 @@ TEST(GrnBatchTest, RandomGenomesFollowTheModelReference) {
   for (int g = 0; g < 8; ++g) {
     Genome genome;
     ASSERT_TRUE(NextRandomGenomeWithMorphogens(71, &individual, &genome));
-    SCOPED_TRACE(testing::Message() << "individual " << individual - 1);
+    SCOPED_TRACE(::testing::Message() << "individual " << individual - 1);
     const Network net = Build(genome);
     const ReferenceGrn reference(genome, net);
     constexpr int kCells = 3;

@@ -5,6 +5,7 @@
 // std::sqrt, never taken from the code under test. Genomes are built by
 // hand; elements meant not to interact are placed at least 3 apart.
 #include "common/grn/network.h"
+#include "tests/genome_builder.h"
 
 #include <gtest/gtest.h>
 
@@ -22,27 +23,12 @@ namespace {
 // change (a different decay or sign) yet above exp's rounding.
 constexpr double kWeightTolerance = 1e-13;
 
-Element P(double x, double y, int sign = 1) {
-  return {ElementType::kP, sign, x, y, -1};
-}
-Element GInt(double x, double y, int sign = 1) {
-  return {ElementType::kGInternal, sign, x, y, -1};
-}
-Element GMor(double x, double y, int sign = 1) {
-  return {ElementType::kGMorphogen, sign, x, y, -1};
-}
-Element In(InputChannel channel, double x, double y, int sign = 1) {
-  return {ElementType::kSIn, sign, x, y, static_cast<int>(channel)};
-}
-Element Out(OutputChannel channel, double x, double y, int sign = 1) {
-  return {ElementType::kSOut, sign, x, y, static_cast<int>(channel)};
-}
-
-Genome MakeGenome(std::initializer_list<Element> elements) {
-  Genome genome;
-  genome.elements = elements;
-  return genome;
-}
+using testing::GInt;
+using testing::GMor;
+using testing::In;
+using testing::MakeGenome;
+using testing::Out;
+using testing::P;
 
 // Builds with the MODEL defaults, checking the genome is valid first.
 Network Build(const Genome& genome) {
@@ -94,7 +80,7 @@ TEST(AffinityTest, OverlappingPointsGiveTenTimesSignProduct) {
   const GrnParams params;
   for (int sf : {1, -1}) {
     for (int sr : {1, -1}) {
-      SCOPED_TRACE(testing::Message() << "signs " << sf << " " << sr);
+      SCOPED_TRACE(::testing::Message() << "signs " << sf << " " << sr);
       const Element f = GInt(3.25, 4.5, sf);
       const Element r = P(3.25, 4.5, sr);
       EXPECT_EQ(Affinity(f, r, params), 10.0 * sf * sr);
@@ -108,7 +94,7 @@ TEST(AffinityTest, DecaysAsTenExpMinusDistanceForEverySignProduct) {
   for (double d : {1.0, 2.0, 2.999}) {
     for (int sf : {1, -1}) {
       for (int sr : {1, -1}) {
-        SCOPED_TRACE(testing::Message()
+        SCOPED_TRACE(::testing::Message()
                      << "d " << d << " signs " << sf << " " << sr);
         const double expected = sf * sr * 10.0 * std::exp(-d);
         const Element r = P(0.0, 0.0, sr);
@@ -150,7 +136,7 @@ TEST(AffinityTest, IsExactlyZeroAtDistanceThreeAndBeyond) {
   for (const Element& f :
        {GInt(5.0, 5.0), GInt(-1.0, 5.0, -1), GMor(2.0, 8.0), GInt(2.0, 2.0),
         GInt(2.0 + beyond_three, 5.0), GInt(5.5, 5.0), GInt(52.0, 55.0)}) {
-    SCOPED_TRACE(testing::Message() << "factor at " << f.x << ", " << f.y);
+    SCOPED_TRACE(::testing::Message() << "factor at " << f.x << ", " << f.y);
     EXPECT_EQ(Affinity(f, r, params), 0.0);
     EXPECT_FALSE(Binds(f, r, params));
   }
@@ -519,7 +505,7 @@ TEST(NetworkTest, UnitMakingBothKindsSplitsWeightByFactorKind) {
   ASSERT_EQ(net.node_count(), 3);
   for (int target : {1, 2}) {
     const Element& r = e[net.nodes()[target].regions[0]];
-    SCOPED_TRACE(testing::Message() << "target " << target);
+    SCOPED_TRACE(::testing::Message() << "target " << target);
     EXPECT_NEAR(net.Weight(SourceKind::kLevel, 0, target),
                 ModelAffinity(e[1], r) + ModelAffinity(e[3], r),
                 kWeightTolerance);
