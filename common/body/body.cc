@@ -5,7 +5,8 @@
 #include "common/geometry/plane_faces.h"
 
 namespace animat {
-Result<Body> BuildBody(std::span<const Vec2> centres) {
+Result<Body> BuildBody(std::span<const Vec2> centres,
+                       std::span<const double> radii) {
   const int n = static_cast<int>(centres.size());
   if (n < 2) {
     return Status::InvalidArgument(std::to_string(n) +
@@ -27,6 +28,11 @@ Result<Body> BuildBody(std::span<const Vec2> centres) {
   }
   Body body;
   body.position.assign(centres.begin(), centres.end());
+  if (radii.empty()) {
+    body.radius.assign(centres.size(), 1.0);
+  } else {
+    body.radius.assign(radii.begin(), radii.end());
+  }
   for (const IndexEdge& e : edges) {
     body.springs.push_back({e.a, e.b, Length(centres[e.b] - centres[e.a])});
   }

@@ -31,6 +31,7 @@ struct Chamber {
 
 struct Body {
   std::vector<Vec2> position;  // Rest position of each node.
+  std::vector<double> radius;  // Cell radius of each node (contacts only).
   std::vector<Spring> springs;
   std::vector<Chamber> chambers;
   std::vector<IndexEdge> skin;  // Outer-face edges, each once, sorted.
@@ -38,10 +39,13 @@ struct Body {
   int nodes() const { return static_cast<int>(position.size()); }
 };
 
-// Builds the body on `centres`. Fails with kInvalidArgument, the message
-// saying why, when two centres are closer than 1e-9 (coincident), there are
-// fewer than 2 centres, or the spring graph is not a connected plane graph.
-Result<Body> BuildBody(std::span<const Vec2> centres);
+// Builds the body on `centres`, with the cells' `radii` (empty: all 1).
+// Fails with kInvalidArgument, the message saying why, when two centres are
+// closer than 1e-9 (coincident), there are fewer than 2 centres, or the
+// spring graph is not a connected plane graph. Precondition: radii is empty
+// or has one entry per centre.
+Result<Body> BuildBody(std::span<const Vec2> centres,
+                       std::span<const double> radii = {});
 
 }  // namespace animat
 

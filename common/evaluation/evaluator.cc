@@ -116,7 +116,7 @@ EvaluationResult Evaluate(const Genome& genome, const ModelConfig& config,
   }
 
   // Body (MODEL §6).
-  Result<Body> body = BuildBody(embryo.position);
+  Result<Body> body = BuildBody(embryo.position, embryo.radius);
   if (!body.ok()) {
     return Failure(EvalStatus::kDegenerateBody,
                    "degenerate body: " + body.status().message(), cells, steps);

@@ -1,8 +1,30 @@
 #include "common/physics/physics_params.h"
 
+#include <string>
+
 #include "common/base/validate.h"
 
 namespace animat {
+
+const char* IntegratorName(Integrator integrator) {
+  switch (integrator) {
+    case Integrator::kSemiImplicitEuler:
+      return "semi_implicit_euler";
+    case Integrator::kVelocityVerlet:
+      return "velocity_verlet";
+    case Integrator::kRk4:
+      return "rk4";
+  }
+  return "?";
+}
+
+const char* DragUpdateName(DragUpdate drag) {
+  return drag == DragUpdate::kStable ? "stable" : "explicit";
+}
+
+const char* BackendName(PhysicsBackend backend) {
+  return backend == PhysicsBackend::kBullet ? "bullet" : "native";
+}
 
 Status PhysicsParamsFromProto(const v1::PhysicsConfig& m,
                               PhysicsParams* params) {
@@ -16,6 +38,56 @@ Status PhysicsParamsFromProto(const v1::PhysicsConfig& m,
   if (m.has_dt()) p.dt = m.dt();
   if (m.has_actuation_max()) p.actuation_max = m.actuation_max();
   if (m.has_min_rest_fraction()) p.min_rest_fraction = m.min_rest_fraction();
+  if (m.has_integrator()) {
+    switch (m.integrator()) {
+      case v1::PhysicsConfig::INTEGRATOR_UNSPECIFIED:
+        break;
+      case v1::PhysicsConfig::SEMI_IMPLICIT_EULER:
+        p.integrator = Integrator::kSemiImplicitEuler;
+        break;
+      case v1::PhysicsConfig::VELOCITY_VERLET:
+        p.integrator = Integrator::kVelocityVerlet;
+        break;
+      case v1::PhysicsConfig::RK4:
+        p.integrator = Integrator::kRk4;
+        break;
+      default:
+        return Status::InvalidArgument("physics.integrator: unknown value " +
+                                       std::to_string(m.integrator()));
+    }
+  }
+  if (m.has_substeps()) p.substeps = m.substeps();
+  if (m.has_drag_update()) {
+    switch (m.drag_update()) {
+      case v1::PhysicsConfig::DRAG_UPDATE_UNSPECIFIED:
+        break;
+      case v1::PhysicsConfig::EXPLICIT:
+        p.drag_update = DragUpdate::kExplicit;
+        break;
+      case v1::PhysicsConfig::STABLE:
+        p.drag_update = DragUpdate::kStable;
+        break;
+      default:
+        return Status::InvalidArgument("physics.drag_update: unknown value " +
+                                       std::to_string(m.drag_update()));
+    }
+  }
+  if (m.has_backend()) {
+    switch (m.backend()) {
+      case v1::PhysicsConfig::BACKEND_UNSPECIFIED:
+        break;
+      case v1::PhysicsConfig::NATIVE:
+        p.backend = PhysicsBackend::kNative;
+        break;
+      case v1::PhysicsConfig::BULLET:
+        p.backend = PhysicsBackend::kBullet;
+        break;
+      default:
+        return Status::InvalidArgument("physics.backend: unknown value " +
+                                       std::to_string(m.backend()));
+    }
+  }
+  if (m.has_contacts()) p.contacts = m.contacts();
   Status status = FirstError({
       RequirePositive("physics.mass", p.mass),
       RequireNonNegative("physics.stiffness", p.stiffness),
@@ -27,6 +99,11 @@ Status PhysicsParamsFromProto(const v1::PhysicsConfig& m,
       RequireInRange("physics.actuation_max", p.actuation_max, 0.0, 0.5,
                      /*include_hi=*/false),
       RequirePositive("physics.min_rest_fraction", p.min_rest_fraction),
+      RequireIntInRange("physics.substeps", p.substeps, 1, 1024),
+      p.contacts && p.backend != PhysicsBackend::kBullet
+          ? Status::InvalidArgument(
+                "physics.contacts: contacts need backend BULLET")
+          : Status::Ok(),
   });
   if (!status.ok()) return status;
   *params = p;
@@ -44,6 +121,25 @@ v1::PhysicsConfig PhysicsParamsToProto(const PhysicsParams& p) {
   m.set_dt(p.dt);
   m.set_actuation_max(p.actuation_max);
   m.set_min_rest_fraction(p.min_rest_fraction);
+  switch (p.integrator) {
+    case Integrator::kSemiImplicitEuler:
+      m.set_integrator(v1::PhysicsConfig::SEMI_IMPLICIT_EULER);
+      break;
+    case Integrator::kVelocityVerlet:
+      m.set_integrator(v1::PhysicsConfig::VELOCITY_VERLET);
+      break;
+    case Integrator::kRk4:
+      m.set_integrator(v1::PhysicsConfig::RK4);
+      break;
+  }
+  m.set_substeps(p.substeps);
+  m.set_drag_update(p.drag_update == DragUpdate::kStable
+                        ? v1::PhysicsConfig::STABLE
+                        : v1::PhysicsConfig::EXPLICIT);
+  m.set_backend(p.backend == PhysicsBackend::kBullet
+                    ? v1::PhysicsConfig::BULLET
+                    : v1::PhysicsConfig::NATIVE);
+  m.set_contacts(p.contacts);
   return m;
 }
 

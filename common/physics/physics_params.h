@@ -8,6 +8,16 @@
 
 namespace animat {
 
+enum class Integrator { kSemiImplicitEuler, kVelocityVerlet, kRk4 };
+enum class DragUpdate { kExplicit, kStable };
+enum class PhysicsBackend { kNative, kBullet };
+
+// "semi_implicit_euler", "velocity_verlet", "rk4"; "explicit", "stable";
+// "native", "bullet".
+const char* IntegratorName(Integrator integrator);
+const char* DragUpdateName(DragUpdate drag);
+const char* BackendName(PhysicsBackend backend);
+
 struct PhysicsParams {
   double mass = 1.0;               // Of every cell.
   double stiffness = 10.0;         // Spring k (force per radius).
@@ -18,6 +28,11 @@ struct PhysicsParams {
   double dt = 0.05;                // Time per simulation step.
   double actuation_max = 0.2;      // A_max, in [0, 0.5).
   double min_rest_fraction = 0.1;  // Rest length never below this * L0.
+  Integrator integrator = Integrator::kSemiImplicitEuler;
+  int substeps = 1;  // Physics sub-steps per simulation step.
+  DragUpdate drag_update = DragUpdate::kExplicit;
+  PhysicsBackend backend = PhysicsBackend::kNative;
+  bool contacts = false;  // Cell-cell contacts (Bullet backend only).
 };
 
 // Overwrites the fields present after checking them; on error `params` is

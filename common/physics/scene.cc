@@ -37,9 +37,12 @@ Result<Scene> SceneFromProto(const v1::Scene& message) {
         RequireFinite(where + ".vy", node.vy()),
         RequireInRange(where + ".expand", node.expand(), 0.0, 1.0),
         RequireInRange(where + ".contract", node.contract(), 0.0, 1.0),
+        node.has_radius() ? RequirePositive(where + ".radius", node.radius())
+                          : Status::Ok(),
     });
     if (!status.ok()) return status;
     scene.body.position.push_back({node.x(), node.y()});
+    scene.body.radius.push_back(node.has_radius() ? node.radius() : 1.0);
     scene.state.position.push_back({node.x(), node.y()});
     scene.state.velocity.push_back({node.vx(), node.vy()});
     scene.expand.push_back(node.expand());
@@ -104,6 +107,9 @@ v1::Body BodyToProto(const Body& body, std::span<const double> expand,
     v1::Node* node = message.add_nodes();
     node->set_x(body.position[i].x);
     node->set_y(body.position[i].y);
+    if (static_cast<size_t>(i) < body.radius.size()) {
+      node->set_radius(body.radius[i]);
+    }
     if (static_cast<size_t>(i) < expand.size()) node->set_expand(expand[i]);
     if (static_cast<size_t>(i) < contract.size()) {
       node->set_contract(contract[i]);

@@ -107,21 +107,142 @@ void SoftBody::AddDragForces(const MotionState& state, Vec2* force) const {
   }
 }
 
-void SoftBody::ComputeForces(const MotionState& state,
-                             std::vector<Vec2>* force) {
+void SoftBody::ComputeForces(const MotionState& state, std::vector<Vec2>* force,
+                             bool drag) {
   force->assign(nodes_, Vec2{});
   AddSpringForces(state, force->data());
   AddPressureForces(state, force->data());
-  AddDragForces(state, force->data());
+  if (drag) AddDragForces(state, force->data());
 }
 
 void SoftBody::Step(MotionState* state) {
-  ComputeForces(*state, &force_);
+  const int substeps = params_.substeps;
+  // dt / 1 == dt: the default path is exactly MODEL §7's step.
+  const double h = params_.dt / substeps;
+  const bool stable = params_.drag_update == DragUpdate::kStable;
+  for (int sub = 0; sub < substeps; ++sub) {
+    if (stable) ApplyStableDrag(0.5 * h, state);
+    switch (params_.integrator) {
+      case Integrator::kSemiImplicitEuler:
+        EulerStep(h, !stable, state);
+        break;
+      case Integrator::kVelocityVerlet:
+        VerletStep(h, !stable, state);
+        break;
+      case Integrator::kRk4:
+        Rk4Step(h, !stable, state);
+        break;
+    }
+    if (stable) ApplyStableDrag(0.5 * h, state);
+  }
+}
+
+void SoftBody::EulerStep(double h, bool drag, MotionState* state) {
+  ComputeForces(*state, &force_, drag);
   const double m = params_.mass;
-  const double dt = params_.dt;
   for (int i = 0; i < nodes_; ++i) {
-    state->velocity[i] += force_[i] / m * dt;
-    state->position[i] += state->velocity[i] * dt;
+    state->velocity[i] += force_[i] / m * h;
+    state->position[i] += state->velocity[i] * h;
+  }
+}
+
+void SoftBody::Acceleration(const MotionState& state, bool drag,
+                            std::vector<Vec2>* out) {
+  ComputeForces(state, out, drag);
+  const double m = params_.mass;
+  for (Vec2& a : *out) a = a / m;
+}
+
+void SoftBody::VerletStep(double h, bool drag, MotionState* state) {
+  std::vector<Vec2>& a0 = k_[0];
+  std::vector<Vec2>& a1 = k_[1];
+  Acceleration(*state, drag, &a0);
+  stage_.position.resize(nodes_);
+  stage_.velocity.resize(nodes_);
+  const double half_h2 = 0.5 * h * h;
+  for (int i = 0; i < nodes_; ++i) {
+    stage_.position[i] =
+        state->position[i] + state->velocity[i] * h + a0[i] * half_h2;
+    stage_.velocity[i] = state->velocity[i] + a0[i] * h;
+  }
+  Acceleration(stage_, drag, &a1);
+  const double half_h = 0.5 * h;
+  for (int i = 0; i < nodes_; ++i) {
+    state->position[i] = stage_.position[i];
+    state->velocity[i] += (a0[i] + a1[i]) * half_h;
+  }
+}
+
+void SoftBody::Rk4Step(double h, bool drag, MotionState* state) {
+  // k_[2s] = dx/dt, k_[2s + 1] = dv/dt at stage s.
+  stage_.position.resize(nodes_);
+  stage_.velocity.resize(nodes_);
+  const double offsets[4] = {0.0, 0.5 * h, 0.5 * h, h};
+  for (int s = 0; s < 4; ++s) {
+    std::vector<Vec2>& dx = k_[2 * s];
+    dx.resize(nodes_);
+    if (s == 0) {
+      for (int i = 0; i < nodes_; ++i) dx[i] = state->velocity[i];
+      Acceleration(*state, drag, &k_[1]);
+      continue;
+    }
+    const std::vector<Vec2>& prev_dx = k_[2 * s - 2];
+    const std::vector<Vec2>& prev_dv = k_[2 * s - 1];
+    for (int i = 0; i < nodes_; ++i) {
+      stage_.position[i] = state->position[i] + prev_dx[i] * offsets[s];
+      stage_.velocity[i] = state->velocity[i] + prev_dv[i] * offsets[s];
+      dx[i] = stage_.velocity[i];
+    }
+    Acceleration(stage_, drag, &k_[2 * s + 1]);
+  }
+  const double sixth = h / 6.0;
+  for (int i = 0; i < nodes_; ++i) {
+    state->position[i] +=
+        (k_[0][i] + k_[2][i] * 2.0 + k_[4][i] * 2.0 + k_[6][i]) * sixth;
+    state->velocity[i] +=
+        (k_[1][i] + k_[3][i] * 2.0 + k_[5][i] * 2.0 + k_[7][i]) * sixth;
+  }
+}
+
+void SoftBody::ApplyStableDrag(double h, MotionState* state) {
+  const Vec2* x = state->position.data();
+  Vec2* v = state->velocity.data();
+  const double m = params_.mass;
+  drag_matrix_.assign(3 * static_cast<size_t>(nodes_), 0.0);
+  drag_rhs_.assign(nodes_, Vec2{});
+  for (size_t e = 0; e < skin_a_.size(); ++e) {
+    const int a = skin_a_[e];
+    const int b = skin_b_[e];
+    const Vec2 d = x[b] - x[a];
+    const double l = Length(d);
+    if (!(l > 0.0)) continue;
+    const Vec2 t = d / l;
+    const Vec2 n{t.y, -t.x};
+    const Vec2 vc = (v[a] + v[b]) * 0.5;
+    // G = l (d_T |v_T| t t^T + d_N |v_N| n n^T); the edge's force is -G vc,
+    // half to each end, and each end takes G / 2 implicitly.
+    const double gt = l * params_.drag_tangential * std::fabs(Dot(vc, t));
+    const double gn = l * params_.drag_normal * std::fabs(Dot(vc, n));
+    const double g11 = gt * t.x * t.x + gn * n.x * n.x;
+    const double g12 = gt * t.x * t.y + gn * n.x * n.y;
+    const double g22 = gt * t.y * t.y + gn * n.y * n.y;
+    for (int end : {a, b}) {
+      // F_end + (G / 2) v_end = (G / 2)(v_end - vc).
+      const Vec2 rel = v[end] - vc;
+      drag_matrix_[3 * end] += 0.5 * g11;
+      drag_matrix_[3 * end + 1] += 0.5 * g12;
+      drag_matrix_[3 * end + 2] += 0.5 * g22;
+      drag_rhs_[end] +=
+          Vec2{g11 * rel.x + g12 * rel.y, g12 * rel.x + g22 * rel.y} * 0.5;
+    }
+  }
+  for (int i = 0; i < nodes_; ++i) {
+    const double a11 = m + h * drag_matrix_[3 * i];
+    const double a12 = h * drag_matrix_[3 * i + 1];
+    const double a22 = m + h * drag_matrix_[3 * i + 2];
+    const Vec2 r = v[i] * m + drag_rhs_[i] * h;
+    const double det = a11 * a22 - a12 * a12;  // > 0: m I + PSD.
+    v[i] = {(a22 * r.x - a12 * r.y) / det, (a11 * r.y - a12 * r.x) / det};
   }
 }
 

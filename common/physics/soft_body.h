@@ -2,8 +2,10 @@
 //
 // SoftBody compiles a Body into flat arrays once; the running state
 // (positions, velocities) is a MotionState owned by the caller. Rest lengths
-// follow the actuation set by SetActuation. A SoftBody is not thread-safe
-// (it keeps scratch buffers); use one per simulation.
+// follow the actuation set by SetActuation. Step integrates with the
+// params' integrator, sub-steps and drag update (other backends implement
+// MotionStepper with SoftBody's forces). A SoftBody is not thread-safe (it
+// keeps scratch buffers); use one per simulation.
 #ifndef ANIMAT_COMMON_PHYSICS_SOFT_BODY_H_
 #define ANIMAT_COMMON_PHYSICS_SOFT_BODY_H_
 
@@ -23,7 +25,15 @@ struct MotionState {
   std::vector<Vec2> velocity;  // Radii per unit time.
 };
 
-class SoftBody {
+// Advances a MotionState by one simulation step (dt) under the forces of a
+// SoftBody at its current actuation.
+class MotionStepper {
+ public:
+  virtual ~MotionStepper() = default;
+  virtual void Step(MotionState* state) = 0;
+};
+
+class SoftBody : public MotionStepper {
  public:
   // Actuation starts at 0 (rest lengths L0). Precondition: the body's
   // indices are valid and chambers have rest_area > 0 (BuildBody and
@@ -40,16 +50,33 @@ class SoftBody {
   // Current rest length of each spring.
   const std::vector<double>& rest_lengths() const { return rest_; }
 
-  // Total force on every node at `state` (springs, pressure, drag).
-  void ComputeForces(const MotionState& state, std::vector<Vec2>* force);
+  // Total force on every node at `state`: springs, pressure, and drag
+  // unless `drag` is false.
+  void ComputeForces(const MotionState& state, std::vector<Vec2>* force,
+                     bool drag = true);
   // Each force family alone (for tests and analysis); forces are added.
   void AddSpringForces(const MotionState& state, Vec2* force) const;
   void AddPressureForces(const MotionState& state, Vec2* force) const;
   void AddDragForces(const MotionState& state, Vec2* force) const;
 
-  // One semi-implicit Euler step of dt, all forces from (x_t, v_t):
-  //   v <- v + F / m * dt, then x <- x + v * dt.
-  void Step(MotionState* state);
+  // One simulation step of dt in params().substeps sub-steps of
+  // h = dt / substeps, each by params().integrator:
+  //   semi-implicit Euler (MODEL §7): v <- v + F(x, v) / m h; x <- x + v h;
+  //   velocity Verlet: x <- x + v h + a0 h^2 / 2 with a0 = F(x, v) / m,
+  //     a1 = F(x', v + a0 h) / m, v <- v + (a0 + a1) h / 2;
+  //   RK4: the classical fourth-order Runge-Kutta on (x, v).
+  // With DragUpdate::kStable the integrator sees no drag; instead
+  // ApplyStableDrag(h / 2) runs before and after it (Strang splitting).
+  void Step(MotionState* state) override;
+
+  // Drag alone over time h, linearly implicit in each node's velocity with
+  // the drag coefficients of the current velocities:
+  //   (m I + h D_i) v_i' = m v_i + h (F_i + D_i v_i),
+  // where F_i is node i's explicit drag force (MODEL §7) and D_i = sum over
+  // its skin edges of l (d_T |v_T| t t^T + d_N |v_N| n n^T) / 2. Exact for a
+  // translating edge (v' = v / (1 + c |v| h)); never reverses the velocity
+  // of a translating body.
+  void ApplyStableDrag(double h, MotionState* state);
 
   // Current signed area of each chamber along its rest walk.
   double ChamberArea(const MotionState& state, int chamber) const;
@@ -63,7 +90,20 @@ class SoftBody {
   std::vector<int> walk_begin_, walk_;  // Chamber walks, flattened.
   std::vector<double> rest_area_;
   std::vector<int> skin_a_, skin_b_;
-  std::vector<Vec2> force_;  // Scratch for Step.
+  // One sub-step of h; `drag` says whether drag is among the forces.
+  void EulerStep(double h, bool drag, MotionState* state);
+  void VerletStep(double h, bool drag, MotionState* state);
+  void Rk4Step(double h, bool drag, MotionState* state);
+  // force_ <- acceleration F / m at `state`.
+  void Acceleration(const MotionState& state, bool drag,
+                    std::vector<Vec2>* out);
+
+  // Scratch, kept between steps to avoid allocation.
+  std::vector<Vec2> force_;
+  MotionState stage_;
+  std::vector<Vec2> k_[8];
+  std::vector<double> drag_matrix_;  // 3 per node: a11, a12, a22.
+  std::vector<Vec2> drag_rhs_;
 };
 
 // Checks that every position and velocity is finite and every coordinate

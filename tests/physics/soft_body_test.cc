@@ -21,6 +21,7 @@
 #include "common/base/vec2.h"
 #include "common/body/body.h"
 #include "common/physics/physics_params.h"
+#include "tests/physics/body_source.h"
 #include "tests/test_util.h"
 
 namespace animat {
@@ -32,51 +33,10 @@ inline void PrintTo(const Vec2& v, std::ostream* os) {
 
 namespace {
 
-// Fixed-seed numbers; the double recipe (53 high bits) is written out so the
-// cases are the same with every standard library.
-class Source {
- public:
-  explicit Source(uint64_t seed) : engine_(seed) {}
-  double Uniform(double lo, double hi) {
-    const double u = static_cast<double>(engine_() >> 11) * 0x1.0p-53;
-    return lo + (hi - lo) * u;
-  }
-  int Int(int lo, int hi) {  // In [lo, hi].
-    return lo +
-           static_cast<int>(engine_() % static_cast<uint64_t>(hi - lo + 1));
-  }
-
- private:
-  std::mt19937_64 engine_;
-};
-
-// A body built on n random centres in [0, side)^2, no two closer than 0.6
-// (cells of radius about 1 end development about 1-2 apart).
-Body RandomBody(Source& source, int n, double side) {
-  std::vector<Vec2> points;
-  while (static_cast<int>(points.size()) < n) {
-    const Vec2 p{source.Uniform(0, side), source.Uniform(0, side)};
-    bool far = true;
-    for (const Vec2& q : points) far = far && Length(p - q) >= 0.6;
-    if (far) points.push_back(p);
-  }
-  Result<Body> body = BuildBody(points);
-  EXPECT_TRUE(body.ok()) << body.status().ToString();
-  return body.ok() ? std::move(body).value() : Body{};
-}
-
-Body MustBuild(const std::vector<Vec2>& centres) {
-  Result<Body> body = BuildBody(centres);
-  EXPECT_TRUE(body.ok()) << body.status().ToString();
-  return body.ok() ? std::move(body).value() : Body{};
-}
-
-MotionState AtRest(const Body& body) {
-  MotionState state;
-  state.position = body.position;
-  state.velocity.assign(body.position.size(), Vec2{});
-  return state;
-}
+using testing::AtRest;
+using testing::MustBuild;
+using testing::RandomBody;
+using testing::Source;
 
 // Signed area of the closed walk, shoelace (independent of the code).
 double Shoelace(const std::vector<Vec2>& p, const std::vector<int>& walk) {

@@ -1,0 +1,64 @@
+// Bodies and states for the physics tests.
+#ifndef ANIMAT_TESTS_PHYSICS_BODY_SOURCE_H_
+#define ANIMAT_TESTS_PHYSICS_BODY_SOURCE_H_
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <random>
+#include <utility>
+#include <vector>
+
+#include "common/base/vec2.h"
+#include "common/body/body.h"
+#include "common/physics/soft_body.h"
+
+namespace animat::testing {
+
+// Fixed-seed numbers; the double recipe (53 high bits) is written out so the
+// cases are the same with every standard library.
+class Source {
+ public:
+  explicit Source(uint64_t seed) : engine_(seed) {}
+  double Uniform(double lo, double hi) {
+    const double u = static_cast<double>(engine_() >> 11) * 0x1.0p-53;
+    return lo + (hi - lo) * u;
+  }
+  int Int(int lo, int hi) {  // In [lo, hi].
+    return lo +
+           static_cast<int>(engine_() % static_cast<uint64_t>(hi - lo + 1));
+  }
+
+ private:
+  std::mt19937_64 engine_;
+};
+
+inline Body MustBuild(const std::vector<Vec2>& centres) {
+  Result<Body> body = BuildBody(centres);
+  EXPECT_TRUE(body.ok()) << body.status().ToString();
+  return body.ok() ? std::move(body).value() : Body{};
+}
+
+// A body built on n random centres in [0, side)^2, no two closer than 0.6
+// (cells of radius about 1 end development about 1-2 apart).
+inline Body RandomBody(Source& source, int n, double side) {
+  std::vector<Vec2> points;
+  while (static_cast<int>(points.size()) < n) {
+    const Vec2 p{source.Uniform(0, side), source.Uniform(0, side)};
+    bool far = true;
+    for (const Vec2& q : points) far = far && Length(p - q) >= 0.6;
+    if (far) points.push_back(p);
+  }
+  return MustBuild(points);
+}
+
+inline MotionState AtRest(const Body& body) {
+  MotionState state;
+  state.position = body.position;
+  state.velocity.assign(body.position.size(), Vec2{});
+  return state;
+}
+
+}  // namespace animat::testing
+
+#endif  // ANIMAT_TESTS_PHYSICS_BODY_SOURCE_H_
