@@ -64,9 +64,11 @@ struct Developed {
   }
 };
 
+// state.range(0): 0 double, 1 float network arithmetic.
 void BM_Evaluate(benchmark::State& state) {
   const Genome& genome = BenchGenome();
-  const ModelConfig config;
+  ModelConfig config;
+  if (state.range(0) == 1) config.grn.precision = Precision::kFloat;
   EvaluationResult result;
   for (auto _ : state) {
     result = Evaluate(genome, config);
@@ -76,7 +78,11 @@ void BM_Evaluate(benchmark::State& state) {
   state.counters["nodes"] = Network::Build(genome, config.grn).node_count();
   state.counters["ok"] = result.status == EvalStatus::kOk;
 }
-BENCHMARK(BM_Evaluate)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Evaluate)
+    ->ArgName("float")
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond);
 
 void BM_Development(benchmark::State& state) {
   const Genome& genome = BenchGenome();

@@ -10,6 +10,7 @@
 #include "common/evaluation/model_config.h"
 #include "common/evaluation/trace_recorder.h"
 #include "common/io/proto_file.h"
+#include "common/physics/bullet/bullet_stepper.h"
 #include "common/physics/scene.h"
 #include "common/physics/soft_body.h"
 
@@ -43,6 +44,11 @@ int Run(const Options& o) {
   const EvaluationParams checks;  // Bound and interval of MODEL §8.
   SoftBody body(scene->body, scene->params);
   body.SetActuation(scene->expand, scene->contract);
+  std::unique_ptr<MotionStepper> bullet;
+  if (scene->params.backend == PhysicsBackend::kBullet) {
+    bullet = MakeBulletStepper(&body, scene->body);
+  }
+  MotionStepper& stepper = bullet ? *bullet : body;
   MotionState& state = scene->state;
   v1::Trace trace;
   *trace.mutable_config()->mutable_physics() =
@@ -57,7 +63,7 @@ int Run(const Options& o) {
   std::string problem;
   int done = 0;
   for (int step = 1; step <= o.steps; ++step) {
-    body.Step(&state);
+    stepper.Step(&state);
     done = step;
     if (step % checks.check_interval == 0 || step == o.steps) {
       problem = CheckState(state, checks.max_coordinate);

@@ -8,6 +8,7 @@ packages=(
   g++ cmake ninja-build pkg-config
   protobuf-compiler libprotobuf-dev
   libcli11-dev
+  libbullet-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   clang-format
 )

@@ -10,4 +10,8 @@ void TanhInPlace(double* values, size_t n) {
   for (size_t i = 0; i < n; ++i) values[i] = Tanh(values[i]);
 }
 
+void TanhInPlace(float* values, size_t n) {
+  for (size_t i = 0; i < n; ++i) values[i] = TanhF(values[i]);
+}
+
 }  // namespace animat

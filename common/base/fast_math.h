@@ -122,6 +122,36 @@ inline double Tanh(double x) {
   return std::copysign(em1 / (em1 + 2.0), x) * (1.0 + (x - x));
 }
 
+// Single-precision tanh by the same method (expm1 to degree 7 on
+// |r| <= ln2/2): within 4 ulp of the correctly rounded float result, odd,
+// exactly +-1 for |x| >= 9.1; non-finite x gives NaN. Four lanes per SSE
+// vector, so it costs about a third of Tanh per value.
+inline float TanhF(float x) {
+  constexpr float kLog2eF = 1.44269504f;
+  // ln 2 split so that k * kLn2HiF is exact for |k| < 2^9.
+  constexpr float kLn2HiF = 0.693145751953125f;
+  constexpr float kLn2LoF = 1.42860677e-06f;
+  constexpr float kShifterF = 0x1.8p23f;
+  const uint32_t bits = std::bit_cast<uint32_t>(std::fabs(x));
+  constexpr uint32_t kNine = std::bit_cast<uint32_t>(9.5f);
+  const float a = std::bit_cast<float>(bits < kNine ? bits : kNine);
+  const float u = 2.0f * a;
+  const float t = u * kLog2eF + kShifterF;
+  const float k = t - kShifterF;
+  const float scale =
+      std::bit_cast<float>((std::bit_cast<uint32_t>(t) + 127u) << 23);
+  const float r = (u - k * kLn2HiF) - k * kLn2LoF;
+  float p = 1.0f / 5040.0f;
+  p = 1.0f / 720.0f + r * p;
+  p = 1.0f / 120.0f + r * p;
+  p = 1.0f / 24.0f + r * p;
+  p = 1.0f / 6.0f + r * p;
+  p = 0.5f + r * p;
+  p = 1.0f + r * p;
+  const float em1 = scale * (r * p) + (scale - 1.0f);
+  return std::copysign(em1 / (em1 + 2.0f), x) * (1.0f + (x - x));
+}
+
 // sin(x) and cos(x) for |x| < 2^20 (accuracy degrades beyond; arguments
 // are cell orientations, a few hundred radians at most).
 inline void SinCos(double x, double* sin_out, double* cos_out) {
@@ -182,6 +212,7 @@ inline void SinCos(double x, double* sin_out, double* cos_out) {
 // forms bit for bit).
 void ExpInPlace(double* values, size_t n);
 void TanhInPlace(double* values, size_t n);
+void TanhInPlace(float* values, size_t n);
 
 }  // namespace animat
 

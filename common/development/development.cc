@@ -11,9 +11,11 @@ constexpr double kTwoPi = 6.28318530717958647692;
 
 }  // namespace
 
-Development::Development(const Network& network, const GrnParams& grn_params,
-                         const DevelopmentParams& params,
-                         const SignalParams& signal_params)
+template <typename S>
+DevelopmentT<S>::DevelopmentT(const Network& network,
+                              const GrnParams& grn_params,
+                              const DevelopmentParams& params,
+                              const SignalParams& signal_params)
     : network_(network),
       params_(params),
       signal_params_(signal_params),
@@ -21,7 +23,8 @@ Development::Development(const Network& network, const GrnParams& grn_params,
       grn_(network, grn_params, params.max_cells),
       field_(network.morphogen_count(), params.max_cells, signal_params) {}
 
-DevelopmentOutcome Development::Run(const Observer& observer) {
+template <typename S>
+DevelopmentOutcome DevelopmentT<S>::Run(const Observer& observer) {
   DevelopmentOutcome outcome;
   // The zygote: one cell at the origin, radius 1, angle 0, all levels 0.
   embryo_.position.push_back({0.0, 0.0});
@@ -29,6 +32,12 @@ DevelopmentOutcome Development::Run(const Observer& observer) {
   embryo_.angle.push_back(0.0);
   grn_.AddCell();
   field_.AddCell();
+  // Nodes that cannot influence any output are not computed.
+  constexpr OutputChannel kAll[] = {
+      OutputChannel::kDivide,      OutputChannel::kRotateLeft,
+      OutputChannel::kRotateRight, OutputChannel::kSize,
+      OutputChannel::kExpand,      OutputChannel::kContract};
+  RestrictTo(network_.NodesReaching(kAll));
   const bool signalling = field_.morphogens() > 0;
 
   for (int step = 0; step < params_.steps; ++step) {
@@ -82,7 +91,19 @@ DevelopmentOutcome Development::Run(const Observer& observer) {
   return outcome;
 }
 
-int Development::Divide(int step, int* late_cell) {
+template <typename S>
+void DevelopmentT<S>::RestrictTo(const std::vector<bool>& needed) {
+  grn_.Restrict(needed);
+  std::vector<int> keep;
+  const std::vector<int>& nodes = network_.morphogen_nodes();
+  for (size_t m = 0; m < nodes.size(); ++m) {
+    if (needed[nodes[m]]) keep.push_back(static_cast<int>(m));
+  }
+  field_.Restrict(keep);
+}
+
+template <typename S>
+int DevelopmentT<S>::Divide(int step, int* late_cell) {
   int divisions = 0;
   const int cells_before = embryo_.cells();  // Daughters wait a step.
   for (int mother = 0; mother < cells_before; ++mother) {
@@ -114,7 +135,8 @@ int Development::Divide(int step, int* late_cell) {
   return divisions;
 }
 
-void Development::Mechanics() {
+template <typename S>
+void DevelopmentT<S>::Mechanics() {
   const int n = embryo_.cells();
   const double k = params_.stiffness;
   const double adhesion = params_.adhesion_ratio * k;
@@ -149,5 +171,8 @@ void Development::Mechanics() {
     for (int i = 0; i < n; ++i) x[i] += force_[i] * dt;
   }
 }
+
+template class DevelopmentT<double>;
+template class DevelopmentT<float>;
 
 }  // namespace animat

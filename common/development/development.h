@@ -2,8 +2,10 @@
 //
 // A Development owns the embryo, its network state and its morphogen
 // field; the evaluation continues with them after development (signals,
-// history and levels carry on into motion). It keeps a reference to the
-// Network, which must outlive it. Not thread-safe; one per evaluation.
+// history and levels carry on into motion). S (double or float) is the
+// network's arithmetic (GrnParams::precision); positions and mechanics are
+// always double. It keeps a reference to the Network, which must outlive
+// it. Not thread-safe; one per evaluation.
 #ifndef ANIMAT_COMMON_DEVELOPMENT_DEVELOPMENT_H_
 #define ANIMAT_COMMON_DEVELOPMENT_DEVELOPMENT_H_
 
@@ -43,26 +45,33 @@ struct DevelopmentOutcome {
   int last_division = -1;  // Step of the last division, -1 if none.
 };
 
-class Development {
+template <typename S>
+class DevelopmentT {
  public:
-  Development(const Network& network, const GrnParams& grn_params,
-              const DevelopmentParams& params,
-              const SignalParams& signal_params);
+  DevelopmentT(const Network& network, const GrnParams& grn_params,
+               const DevelopmentParams& params,
+               const SignalParams& signal_params);
 
   // Called after each step's mechanics with the step number (0-based).
-  using Observer = std::function<void(int step, const Development&)>;
+  using Observer = std::function<void(int step, const DevelopmentT&)>;
 
   // Runs development from the zygote. Stops at once on a late division
   // (its status takes priority over too few cells). Call once.
   DevelopmentOutcome Run(const Observer& observer = nullptr);
 
   const Embryo& embryo() const { return embryo_; }
-  GrnBatch& grn() { return grn_; }
-  const GrnBatch& grn() const { return grn_; }
-  MorphogenField& field() { return field_; }
-  const MorphogenField& field() const { return field_; }
+  GrnBatchT<S>& grn() { return grn_; }
+  const GrnBatchT<S>& grn() const { return grn_; }
+  MorphogenFieldT<S>& field() { return field_; }
+  const MorphogenFieldT<S>& field() const { return field_; }
   const std::array<Vec2, 3>& maternal_sources() const { return sources_; }
   const DevelopmentParams& params() const { return params_; }
+
+  // Computes, in the network and the signals, only the nodes marked in
+  // `needed` (indexed by node; Network::NodesReaching). Run() restricts to
+  // the nodes that can influence some output; the evaluation narrows this
+  // to EXPAND and CONTRACT for motion.
+  void RestrictTo(const std::vector<bool>& needed);
   const SignalParams& signal_params() const { return signal_params_; }
 
  private:
@@ -75,10 +84,15 @@ class Development {
   SignalParams signal_params_;
   std::array<Vec2, 3> sources_;
   Embryo embryo_;
-  GrnBatch grn_;
-  MorphogenField field_;
+  GrnBatchT<S> grn_;
+  MorphogenFieldT<S> field_;
   std::vector<Vec2> force_;  // Scratch for the mechanics.
 };
+
+using Development = DevelopmentT<double>;
+
+extern template class DevelopmentT<double>;
+extern template class DevelopmentT<float>;
 
 }  // namespace animat
 

@@ -30,26 +30,50 @@ std::array<double, kInputChannels> InputValuesAt(
   return values;
 }
 
-MorphogenField::MorphogenField(int morphogens, int capacity,
-                               const SignalParams& params)
+template <typename S>
+MorphogenFieldT<S>::MorphogenFieldT(int morphogens, int capacity,
+                                    const SignalParams& params)
     : morphogens_(morphogens), capacity_(capacity), params_(params) {
   const size_t cap = static_cast<size_t>(capacity);
   kernel_.assign(cap * cap, 0.0);
   delay_.assign(cap * cap, 0);
   history_.assign(kHistory * cap * morphogens, 0.0);
   sum_.assign(cap * morphogens, 0.0);
+  for (int m = 0; m < morphogens; ++m) keep_.push_back(m);
 }
 
-void MorphogenField::AddCell() {
+template <typename S>
+void MorphogenFieldT<S>::Restrict(const std::vector<int>& keep) {
+  const int kept = static_cast<int>(keep.size());
+  std::vector<S> history(kHistory * static_cast<size_t>(capacity_) * kept);
+  for (int cell = 0; kept > 0 && cell < cells_; ++cell) {
+    for (int s = 0; s < kHistory; ++s) {
+      const S* from = slot(s, cell);
+      S* to = &history[(static_cast<size_t>(cell) * kHistory + s) * kept];
+      // keep[j] indexes the current compacted layout through keep_.
+      for (int j = 0; j < kept; ++j) {
+        const auto it = std::find(keep_.begin(), keep_.end(), keep[j]);
+        to[j] = from[it - keep_.begin()];
+      }
+    }
+  }
+  history_ = std::move(history);
+  keep_ = keep;
+  morphogens_ = kept;
+}
+
+template <typename S>
+void MorphogenFieldT<S>::AddCell() {
   assert(cells_ < capacity_);
   const int cell = cells_++;
   if (morphogens_ == 0) return;  // No history to keep.
   for (int s = 0; s < kHistory; ++s) {
-    std::fill_n(slot(s, cell), morphogens_, 0.0);
+    std::fill_n(slot(s, cell), morphogens_, S{0});
   }
 }
 
-void MorphogenField::CopyCell(int mother) {
+template <typename S>
+void MorphogenFieldT<S>::CopyCell(int mother) {
   assert(cells_ < capacity_ && mother >= 0 && mother < cells_);
   const int cell = cells_++;
   if (morphogens_ == 0) return;  // No history to copy.
@@ -58,11 +82,12 @@ void MorphogenField::CopyCell(int mother) {
   }
 }
 
-void MorphogenField::SetGeometry(std::span<const Vec2> positions) {
+template <typename S>
+void MorphogenFieldT<S>::SetGeometry(std::span<const Vec2> positions) {
   assert(static_cast<int>(positions.size()) == cells_);
   const int n = cells_;
   for (int i = 0; i < n; ++i) {
-    kernel_[i * capacity_ + i] = 1.0;
+    kernel_[i * capacity_ + i] = S{1};
     delay_[i * capacity_ + i] = 0;
     for (int k = i + 1; k < n; ++k) {
       const double d = Length(positions[k] - positions[i]);
@@ -70,18 +95,19 @@ void MorphogenField::SetGeometry(std::span<const Vec2> positions) {
       const double steps = std::floor(d / params_.delay_length + 0.5);
       const int delay = steps < params_.max_delay ? static_cast<int>(steps)
                                                   : params_.max_delay;
-      kernel_[i * capacity_ + k] = kernel_[k * capacity_ + i] = kernel;
+      kernel_[i * capacity_ + k] = kernel_[k * capacity_ + i] =
+          static_cast<S>(kernel);
       delay_[i * capacity_ + k] = delay_[k * capacity_ + i] =
           static_cast<uint8_t>(delay);
     }
   }
 }
 
-void MorphogenField::Record(int step, const GrnBatch& grn) {
+template <typename S>
+void MorphogenFieldT<S>::Record(int step, const GrnBatchT<S>& grn) {
   const std::vector<int>& nodes = grn.network().morphogen_nodes();
-  assert(static_cast<int>(nodes.size()) == morphogens_);
   for (int m = 0; m < morphogens_; ++m) {
-    const double* level = grn.level_row(nodes[m]);
+    const S* level = grn.level_row(nodes[keep_[m]]);
     for (int cell = 0; cell < cells_; ++cell) {
       slot(step, cell)[m] = level[cell];
     }
@@ -93,46 +119,53 @@ namespace {
 // M_j(i) for every cell i: sums over source cells k in increasing order.
 // kM > 0 fixes the morphogen count at compile time (sums in registers,
 // vectorised); kM == 0 handles any count.
-template <int kM>
-void ApplyKernel(int step, int n, int m_count, int capacity,
-                 const double* kernel, const uint8_t* delay,
-                 const double* history, double* out) {
-  constexpr int kHistory = MorphogenField::kHistory;
+template <int kM, typename S>
+void ApplyKernel(int step, int n, int m_count, int capacity, const S* kernel,
+                 const uint8_t* delay, const S* history, S* out) {
+  constexpr int kHistory = MorphogenFieldT<S>::kHistory;
   if constexpr (kM > 0) m_count = kM;
+  // Offset in a cell's ring of the values entering step - d, for every
+  // delay d: one table per step instead of index arithmetic per pair.
+  uint32_t offset[kHistory];
+  for (int d = 0; d < kHistory; ++d) {
+    offset[d] = static_cast<uint32_t>(((step - d) & (kHistory - 1)) * m_count);
+  }
+  const size_t ring = static_cast<size_t>(kHistory) * m_count;
   for (int i = 0; i < n; ++i) {
-    double sum[kM > 0 ? kM : 1] = {};
-    double* acc = kM > 0 ? sum : &out[static_cast<size_t>(i) * m_count];
-    if constexpr (kM == 0) std::fill_n(acc, m_count, 0.0);
-    const double* kernel_row = &kernel[static_cast<size_t>(i) * capacity];
+    S sum[kM > 0 ? kM : 1] = {};
+    S* acc = kM > 0 ? sum : &out[static_cast<size_t>(i) * m_count];
+    if constexpr (kM == 0) std::fill_n(acc, m_count, S{0});
+    const S* kernel_row = &kernel[static_cast<size_t>(i) * capacity];
     const uint8_t* delay_row = &delay[static_cast<size_t>(i) * capacity];
-    for (int k = 0; k < n; ++k) {
-      const double w = kernel_row[k];
-      const size_t slot =
-          static_cast<size_t>(step - delay_row[k]) & (kHistory - 1);
-      const double* h =
-          &history[(static_cast<size_t>(k) * kHistory + slot) * m_count];
+    const S* ring_k = history;
+    for (int k = 0; k < n; ++k, ring_k += ring) {
+      const S w = kernel_row[k];
+      const S* h = ring_k + offset[delay_row[k]];
       for (int m = 0; m < m_count; ++m) acc[m] += w * h[m];
     }
     if constexpr (kM > 0) {
-      for (int m = 0; m < kM; ++m)
+      for (int m = 0; m < kM; ++m) {
         out[static_cast<size_t>(i) * kM + m] = sum[m];
+      }
     }
   }
 }
 
 }  // namespace
 
-void MorphogenField::Apply(int step, GrnBatch* grn) const {
+template <typename S>
+void MorphogenFieldT<S>::Apply(int step, GrnBatchT<S>* grn) const {
   const int n = cells_;
   const int m_count = morphogens_;
-  double* sum = sum_.data();
-  const double* kernel = kernel_.data();
+  S* sum = sum_.data();
+  const S* kernel = kernel_.data();
   const uint8_t* delay = delay_.data();
-  const double* history = history_.data();
+  const S* history = history_.data();
   switch (m_count) {
-#define ANIMAT_APPLY_CASE(M)                                                  \
-  case M:                                                                     \
-    ApplyKernel<M>(step, n, m_count, capacity_, kernel, delay, history, sum); \
+#define ANIMAT_APPLY_CASE(M)                                               \
+  case M:                                                                  \
+    ApplyKernel<M, S>(step, n, m_count, capacity_, kernel, delay, history, \
+                      sum);                                                \
     break;
     ANIMAT_APPLY_CASE(1)
     ANIMAT_APPLY_CASE(2)
@@ -148,13 +181,16 @@ void MorphogenField::Apply(int step, GrnBatch* grn) const {
       break;
   }
   for (int m = 0; m < m_count; ++m) {
-    double* signal = grn->signal_row(m);
+    S* signal = grn->signal_row(keep_[m]);
     for (int i = 0; i < n; ++i) {
       // NaN passes through (never clamped to a number).
-      const double v = sum[static_cast<size_t>(i) * m_count + m];
-      signal[i] = v > 1.0 ? 1.0 : v;
+      const S v = sum[static_cast<size_t>(i) * m_count + m];
+      signal[i] = v > S{1} ? S{1} : v;
     }
   }
 }
+
+template class MorphogenFieldT<double>;
+template class MorphogenFieldT<float>;
 
 }  // namespace animat

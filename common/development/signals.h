@@ -3,8 +3,10 @@
 // MorphogenField keeps, for every cell, the recent history of its
 // morphogen-making nodes' levels, and turns it into the signal M each cell
 // sees through the distance kernel K(d) = exp(-d / kernel_length) and the
-// delay tau(d) = min(max_delay, floor(d / delay_length + 0.5)) steps. Not
-// thread-safe; one field per evaluation.
+// delay tau(d) = min(max_delay, floor(d / delay_length + 0.5)) steps. The
+// scalar S (double or float) is that of the network batch it serves;
+// distances, kernels and delays are computed in double. Not thread-safe;
+// one field per evaluation.
 #ifndef ANIMAT_COMMON_DEVELOPMENT_SIGNALS_H_
 #define ANIMAT_COMMON_DEVELOPMENT_SIGNALS_H_
 
@@ -29,16 +31,18 @@ std::array<Vec2, 3> MaternalSources(const SignalParams& params);
 std::array<double, kInputChannels> InputValuesAt(
     Vec2 p, const std::array<Vec2, 3>& sources, const SignalParams& params);
 
-class MorphogenField {
+template <typename S>
+class MorphogenFieldT {
  public:
   // History length in steps (a power of two above the longest delay).
   static constexpr int kHistory = 128;
 
   // `morphogens`: the network's morphogen-making nodes; `capacity`: most
   // cells.
-  MorphogenField(int morphogens, int capacity, const SignalParams& params);
+  MorphogenFieldT(int morphogens, int capacity, const SignalParams& params);
 
   int cells() const { return cells_; }
+  // Morphogens computed (all of the network's until Restrict).
   int morphogens() const { return morphogens_; }
 
   // Adds a cell whose history is all 0 / a copy of the mother's.
@@ -51,12 +55,17 @@ class MorphogenField {
 
   // Stores every cell's morphogen-node levels in `grn` as its values
   // entering step `step`.
-  void Record(int step, const GrnBatch& grn);
+  void Record(int step, const GrnBatchT<S>& grn);
 
   // Writes M_j(i) = min(1, sum over cells k, in index order, of
   // K(d_ik) * L_j(k, step - tau(d_ik))) into grn's signal rows; history
   // before step 0 reads 0.
-  void Apply(int step, GrnBatch* grn) const;
+  void Apply(int step, GrnBatchT<S>* grn) const;
+
+  // From now on only the listed morphogens (indices into the network's
+  // morphogen_nodes(), increasing) are recorded and applied; the others'
+  // signals keep their last values. The kept histories carry over.
+  void Restrict(const std::vector<int>& keep);
 
   double kernel(int i, int k) const { return kernel_[i * capacity_ + k]; }
   int delay(int i, int k) const { return delay_[i * capacity_ + k]; }
@@ -64,7 +73,7 @@ class MorphogenField {
  private:
   // The cell's values entering `step` (any integer; the ring wraps).
   // Precondition: morphogens_ > 0.
-  double* slot(int step, int cell) {
+  S* slot(int step, int cell) {
     return &history_[(static_cast<size_t>(cell) * kHistory +
                       (static_cast<size_t>(step) & (kHistory - 1))) *
                      morphogens_];
@@ -74,11 +83,17 @@ class MorphogenField {
   int capacity_;
   int cells_ = 0;
   SignalParams params_;
-  std::vector<double> kernel_;       // capacity x capacity
-  std::vector<uint8_t> delay_;       // capacity x capacity
-  std::vector<double> history_;      // [cell][slot][morphogen]
-  mutable std::vector<double> sum_;  // scratch, [cell][morphogen]
+  std::vector<int> keep_;       // Network morphogen index of each kept one.
+  std::vector<S> kernel_;       // capacity x capacity
+  std::vector<uint8_t> delay_;  // capacity x capacity
+  std::vector<S> history_;      // [cell][slot][morphogen]
+  mutable std::vector<S> sum_;  // scratch, [cell][morphogen]
 };
+
+using MorphogenField = MorphogenFieldT<double>;
+
+extern template class MorphogenFieldT<double>;
+extern template class MorphogenFieldT<float>;
 
 }  // namespace animat
 

@@ -1,11 +1,13 @@
 #include "common/evaluation/evaluator.h"
 
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "common/base/hash.h"
 #include "common/development/signals.h"
 #include "common/grn/network.h"
+#include "common/physics/bullet/bullet_stepper.h"
 
 namespace animat {
 namespace {
@@ -21,15 +23,15 @@ EvaluationResult Failure(EvalStatus status, std::string reason, int cells,
 }
 
 // Each cell's EXPAND and CONTRACT values.
-void ReadActuation(const GrnBatch& grn, std::vector<double>* expand,
+template <typename S>
+void ReadActuation(const GrnBatchT<S>& grn, std::vector<double>* expand,
                    std::vector<double>* contract) {
-  for (int cell = 0; cell < grn.cells(); ++cell) {
-    (*expand)[cell] = grn.Output(cell, OutputChannel::kExpand);
-    (*contract)[cell] = grn.Output(cell, OutputChannel::kContract);
-  }
+  grn.OutputAll(OutputChannel::kExpand, expand->data());
+  grn.OutputAll(OutputChannel::kContract, contract->data());
 }
 
-uint64_t HashFinalState(const MotionState& state, const GrnBatch& grn) {
+template <typename S>
+uint64_t HashFinalState(const MotionState& state, const GrnBatchT<S>& grn) {
   StateHash hash;
   HashMotionState(state, &hash);
   for (int node = 0; node < grn.network().node_count(); ++node) {
@@ -42,6 +44,148 @@ uint64_t HashFinalState(const MotionState& state, const GrnBatch& grn) {
 
 bool CheckDue(int step, int last, int interval) {
   return step % interval == 0 || step == last;
+}
+
+// Development, body, equilibration and motion of a viable network, with
+// network arithmetic in S.
+template <typename S>
+EvaluationResult RunModel(const Network& network, const ModelConfig& config,
+                          EvaluationObserver* observer) {
+  // Development (MODEL §4, §5).
+  DevelopmentT<S> development(network, config.grn, config.development,
+                              config.signals);
+  typename DevelopmentT<S>::Observer on_step;
+  if (observer) {
+    on_step = [observer](int step, const DevelopmentT<S>& d) {
+      observer->OnDevelopmentStep(step, d.embryo());
+    };
+  }
+  const DevelopmentOutcome outcome = development.Run(on_step);
+  const Embryo& embryo = development.embryo();
+  const int cells = embryo.cells();
+  int64_t steps = outcome.steps_run;
+  switch (outcome.status) {
+    case DevelopmentStatus::kOk:
+      break;
+    case DevelopmentStatus::kLateDivision:
+      return Failure(EvalStatus::kLateDivision, outcome.reason, cells, steps);
+    case DevelopmentStatus::kTooFewCells:
+      return Failure(EvalStatus::kTooFewCells, outcome.reason, cells, steps);
+    case DevelopmentStatus::kNumericalFailure:
+      return Failure(EvalStatus::kNumericalFailure, outcome.reason, cells,
+                     steps);
+  }
+
+  // Body (MODEL §6).
+  Result<Body> body = BuildBody(embryo.position, embryo.radius);
+  if (!body.ok()) {
+    return Failure(EvalStatus::kDegenerateBody,
+                   "degenerate body: " + body.status().message(), cells, steps);
+  }
+
+  // Motion needs only what can influence EXPAND and CONTRACT; the other
+  // nodes (DIVIDE, ROTATE, SIZE and what feeds only them) stop.
+  constexpr OutputChannel kMotionOutputs[] = {OutputChannel::kExpand,
+                                              OutputChannel::kContract};
+  development.RestrictTo(network.NodesReaching(kMotionOutputs));
+
+  // Positional information frozen at its end-of-development values (§5).
+  GrnBatchT<S>& grn = development.grn();
+  MorphogenFieldT<S>& field = development.field();
+  for (int cell = 0; cell < cells; ++cell) {
+    grn.SetInputs(
+        cell, InputValuesAt(embryo.position[cell],
+                            development.maternal_sources(), config.signals));
+  }
+  grn.FreezeInputs();
+  const bool signalling = field.morphogens() > 0;
+  if (signalling) field.SetGeometry(embryo.position);
+
+  std::vector<double> expand(cells), contract(cells);
+  ReadActuation(grn, &expand, &contract);
+  SoftBody soft_body(*body, config.physics);
+  soft_body.SetActuation(expand, contract);
+  // The backend: SoftBody integrates itself, or a fresh Bullet world
+  // integrates its forces.
+  std::unique_ptr<MotionStepper> bullet;
+  if (config.physics.backend == PhysicsBackend::kBullet) {
+    bullet = MakeBulletStepper(&soft_body, *body);
+  }
+  MotionStepper& stepper = bullet ? *bullet : soft_body;
+  MotionState state;
+  state.position = body->position;
+  state.velocity.assign(cells, Vec2{});
+  if (observer) {
+    observer->OnBody(*body, expand, contract);
+    observer->OnMotionStep(MotionPhase::kEquilibration, 0, state, expand,
+                           contract);
+  }
+
+  // Equilibration: network stopped, velocities damped (§8).
+  const EvaluationParams& ev = config.evaluation;
+  for (int step = 1; step <= ev.equilibration_steps; ++step) {
+    stepper.Step(&state);
+    for (Vec2& v : state.velocity) v = v * ev.equilibration_damping;
+    ++steps;
+    if (CheckDue(step, ev.equilibration_steps, ev.check_interval)) {
+      const std::string problem = CheckState(state, ev.max_coordinate);
+      if (!problem.empty()) {
+        return Failure(
+            EvalStatus::kNumericalFailure,
+            problem + " at equilibration step " + std::to_string(step), cells,
+            steps);
+      }
+    }
+    if (observer) {
+      observer->OnMotionStep(MotionPhase::kEquilibration, step, state, expand,
+                             contract);
+    }
+  }
+
+  // Motion: network running (§7, §8).
+  for (Vec2& v : state.velocity) v = Vec2{};
+  const Vec2 start = CentreOfMass(state);
+  if (observer) {
+    observer->OnMotionStep(MotionPhase::kMotion, 0, state, expand, contract);
+  }
+  const int history_base = config.development.steps;
+  for (int step = 1; step <= ev.motion_steps; ++step) {
+    if (signalling) {
+      const int signal_step = history_base + step - 1;
+      field.Record(signal_step, grn);
+      field.Apply(signal_step, &grn);
+    }
+    grn.Step();
+    ReadActuation(grn, &expand, &contract);
+    soft_body.SetActuation(expand, contract);
+    stepper.Step(&state);
+    ++steps;
+    if (CheckDue(step, ev.motion_steps, ev.check_interval)) {
+      const std::string problem = CheckState(state, ev.max_coordinate);
+      if (!problem.empty()) {
+        return Failure(EvalStatus::kNumericalFailure,
+                       problem + " at motion step " + std::to_string(step),
+                       cells, steps);
+      }
+    }
+    if (observer) {
+      observer->OnMotionStep(MotionPhase::kMotion, step, state, expand,
+                             contract);
+    }
+  }
+
+  const double fitness = Length(CentreOfMass(state) - start);
+  if (!std::isfinite(fitness)) {
+    return Failure(EvalStatus::kNumericalFailure, "non-finite fitness", cells,
+                   steps);
+  }
+  EvaluationResult result;
+  result.status = EvalStatus::kOk;
+  result.fitness = fitness;
+  result.cells = cells;
+  result.steps = steps;
+  result.state_hash = HashFinalState(state, grn);
+  return result;
 }
 
 }  // namespace
@@ -89,129 +233,10 @@ EvaluationResult Evaluate(const Genome& genome, const ModelConfig& config,
   if (!viability.viable) {
     return Failure(EvalStatus::kNonViable, viability.reason, 0, 0);
   }
-
-  // Development (MODEL §4, §5).
-  Development development(network, config.grn, config.development,
-                          config.signals);
-  Development::Observer on_step;
-  if (observer) {
-    on_step = [observer](int step, const Development& d) {
-      observer->OnDevelopmentStep(step, d);
-    };
+  if (config.grn.precision == Precision::kFloat) {
+    return RunModel<float>(network, config, observer);
   }
-  const DevelopmentOutcome outcome = development.Run(on_step);
-  const Embryo& embryo = development.embryo();
-  const int cells = embryo.cells();
-  int64_t steps = outcome.steps_run;
-  switch (outcome.status) {
-    case DevelopmentStatus::kOk:
-      break;
-    case DevelopmentStatus::kLateDivision:
-      return Failure(EvalStatus::kLateDivision, outcome.reason, cells, steps);
-    case DevelopmentStatus::kTooFewCells:
-      return Failure(EvalStatus::kTooFewCells, outcome.reason, cells, steps);
-    case DevelopmentStatus::kNumericalFailure:
-      return Failure(EvalStatus::kNumericalFailure, outcome.reason, cells,
-                     steps);
-  }
-
-  // Body (MODEL §6).
-  Result<Body> body = BuildBody(embryo.position, embryo.radius);
-  if (!body.ok()) {
-    return Failure(EvalStatus::kDegenerateBody,
-                   "degenerate body: " + body.status().message(), cells, steps);
-  }
-
-  // Positional information frozen at its end-of-development values (§5).
-  GrnBatch& grn = development.grn();
-  MorphogenField& field = development.field();
-  for (int cell = 0; cell < cells; ++cell) {
-    grn.SetInputs(
-        cell, InputValuesAt(embryo.position[cell],
-                            development.maternal_sources(), config.signals));
-  }
-  grn.FreezeInputs();
-  const bool signalling = field.morphogens() > 0;
-  if (signalling) field.SetGeometry(embryo.position);
-
-  std::vector<double> expand(cells), contract(cells);
-  ReadActuation(grn, &expand, &contract);
-  SoftBody soft_body(*body, config.physics);
-  soft_body.SetActuation(expand, contract);
-  MotionState state;
-  state.position = body->position;
-  state.velocity.assign(cells, Vec2{});
-  if (observer) {
-    observer->OnBody(*body, expand, contract);
-    observer->OnMotionStep(MotionPhase::kEquilibration, 0, state, expand,
-                           contract);
-  }
-
-  // Equilibration: network stopped, velocities damped (§8).
-  const EvaluationParams& ev = config.evaluation;
-  for (int step = 1; step <= ev.equilibration_steps; ++step) {
-    soft_body.Step(&state);
-    for (Vec2& v : state.velocity) v = v * ev.equilibration_damping;
-    ++steps;
-    if (CheckDue(step, ev.equilibration_steps, ev.check_interval)) {
-      const std::string problem = CheckState(state, ev.max_coordinate);
-      if (!problem.empty()) {
-        return Failure(
-            EvalStatus::kNumericalFailure,
-            problem + " at equilibration step " + std::to_string(step), cells,
-            steps);
-      }
-    }
-    if (observer) {
-      observer->OnMotionStep(MotionPhase::kEquilibration, step, state, expand,
-                             contract);
-    }
-  }
-
-  // Motion: network running (§7, §8).
-  for (Vec2& v : state.velocity) v = Vec2{};
-  const Vec2 start = CentreOfMass(state);
-  if (observer) {
-    observer->OnMotionStep(MotionPhase::kMotion, 0, state, expand, contract);
-  }
-  const int history_base = config.development.steps;
-  for (int step = 1; step <= ev.motion_steps; ++step) {
-    if (signalling) {
-      const int signal_step = history_base + step - 1;
-      field.Record(signal_step, grn);
-      field.Apply(signal_step, &grn);
-    }
-    grn.Step();
-    ReadActuation(grn, &expand, &contract);
-    soft_body.SetActuation(expand, contract);
-    soft_body.Step(&state);
-    ++steps;
-    if (CheckDue(step, ev.motion_steps, ev.check_interval)) {
-      const std::string problem = CheckState(state, ev.max_coordinate);
-      if (!problem.empty()) {
-        return Failure(EvalStatus::kNumericalFailure,
-                       problem + " at motion step " + std::to_string(step),
-                       cells, steps);
-      }
-    }
-    if (observer) {
-      observer->OnMotionStep(MotionPhase::kMotion, step, state, expand,
-                             contract);
-    }
-  }
-
-  const double fitness = Length(CentreOfMass(state) - start);
-  if (!std::isfinite(fitness)) {
-    return Failure(EvalStatus::kNumericalFailure, "non-finite fitness", cells,
-                   steps);
-  }
-  EvaluationResult result;
-  result.status = EvalStatus::kOk;
-  result.fitness = fitness;
-  result.cells = cells;
-  result.steps = steps;
-  result.state_hash = HashFinalState(state, grn);
-  return result;
+  return RunModel<double>(network, config, observer);
 }
 
 }  // namespace animat

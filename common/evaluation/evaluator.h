@@ -58,9 +58,9 @@ class EvaluationObserver {
  public:
   virtual ~EvaluationObserver() = default;
   // After the mechanics of development step `step` (0-based).
-  virtual void OnDevelopmentStep(int step, const Development& development) {
+  virtual void OnDevelopmentStep(int step, const Embryo& embryo) {
     (void)step;
-    (void)development;
+    (void)embryo;
   }
   // The body built at the end of development, and the frozen actuation.
   virtual void OnBody(const Body& body, std::span<const double> expand,

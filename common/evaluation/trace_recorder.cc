@@ -25,10 +25,8 @@ void AppendFrame(MotionPhase phase, int step, const MotionState& state,
 TraceRecorder::TraceRecorder(const ModelConfig& config, int every)
     : config_(config), every_(every < 1 ? 1 : every) {}
 
-void TraceRecorder::OnDevelopmentStep(int step,
-                                      const Development& development) {
+void TraceRecorder::OnDevelopmentStep(int step, const Embryo& embryo) {
   if (step % every_ != 0 && step != config_.development.steps - 1) return;
-  const Embryo& embryo = development.embryo();
   v1::DevelopmentSnapshot* snapshot = trace_.add_development();
   snapshot->set_step(step);
   for (int cell = 0; cell < embryo.cells(); ++cell) {

@@ -22,7 +22,7 @@ class TraceRecorder : public EvaluationObserver {
   // `every` >= 1. The config gives the phases' lengths.
   TraceRecorder(const ModelConfig& config, int every);
 
-  void OnDevelopmentStep(int step, const Development& development) override;
+  void OnDevelopmentStep(int step, const Embryo& embryo) override;
   void OnBody(const Body& body, std::span<const double> expand,
               std::span<const double> contract) override;
   void OnMotionStep(MotionPhase phase, int step, const MotionState& state,

@@ -7,123 +7,176 @@
 #include "common/base/fast_math.h"
 
 namespace animat {
+namespace {
 
-GrnBatch::GrnBatch(const Network& network, const GrnParams& params,
-                   int capacity)
-    : network_(&network), dt_(params.dt), capacity_(capacity) {
+inline double TanhOf(double x) { return Tanh(x); }
+inline float TanhOf(float x) { return TanhF(x); }
+
+}  // namespace
+
+template <typename S>
+GrnBatchT<S>::GrnBatchT(const Network& network, const GrnParams& params,
+                        int capacity)
+    : network_(&network), dt_(static_cast<S>(params.dt)), capacity_(capacity) {
   assert(capacity > 0);
   const size_t cap = static_cast<size_t>(capacity);
   levels_.assign(network.node_count() * cap, 0.0);
   signals_.assign(network.morphogen_count() * cap, 0.0);
   activation_.assign(network.targets().size() * cap, 0.0);
+  Restrict({});
 }
 
-int GrnBatch::AddCell() {
+template <typename S>
+void GrnBatchT<S>::Restrict(const std::vector<bool>& needed) {
+  const Network& net = *network_;
+  active_targets_.clear();
+  active_sources_.clear();
+  active_input_sources_ = 0;
+  for (size_t t = 0; t < net.targets().size(); ++t) {
+    if (needed.empty() || needed[net.targets()[t]]) {
+      active_targets_.push_back(static_cast<int>(t));
+    }
+  }
+  // A source that is not needed has no path to a needed node, so it has
+  // no weight onto one: dropping it changes no needed sum. Weights onto
+  // targets that are not needed are dropped too.
+  row_begin_.assign(1, 0);
+  row_target_.clear();
+  row_weight_.clear();
+  const std::vector<int>& begin = net.row_begin();
+  for (size_t s = 0; s < net.sources().size(); ++s) {
+    if (!needed.empty() && !needed[net.sources()[s].node]) continue;
+    active_sources_.push_back(static_cast<int>(s));
+    if (static_cast<int>(s) < net.input_source_count()) {
+      ++active_input_sources_;
+    }
+    for (int k = begin[s]; k < begin[s + 1]; ++k) {
+      const int t = net.weight_target()[k];
+      if (!needed.empty() && !needed[net.targets()[t]]) continue;
+      row_target_.push_back(t);
+      row_weight_.push_back(static_cast<S>(net.weight_value()[k]));
+    }
+    row_begin_.push_back(static_cast<int>(row_target_.size()));
+  }
+  frozen_ = false;
+}
+
+template <typename S>
+int GrnBatchT<S>::AddCell() {
   assert(cells_ < capacity_);
   const int cell = cells_++;
   for (int v = 0; v < network_->node_count(); ++v) {
-    levels_[static_cast<size_t>(v) * capacity_ + cell] = 0.0;
+    levels_[static_cast<size_t>(v) * capacity_ + cell] = S{0};
   }
   for (int m = 0; m < network_->morphogen_count(); ++m) {
-    signals_[static_cast<size_t>(m) * capacity_ + cell] = 0.0;
+    signals_[static_cast<size_t>(m) * capacity_ + cell] = S{0};
   }
   frozen_ = false;
   return cell;
 }
 
-int GrnBatch::CopyCell(int mother) {
+template <typename S>
+int GrnBatchT<S>::CopyCell(int mother) {
   assert(cells_ < capacity_ && mother >= 0 && mother < cells_);
   const int cell = cells_++;
   for (int v = 0; v < network_->node_count(); ++v) {
-    double* row = &levels_[static_cast<size_t>(v) * capacity_];
+    S* row = &levels_[static_cast<size_t>(v) * capacity_];
     row[cell] = row[mother];
   }
   for (int m = 0; m < network_->morphogen_count(); ++m) {
-    double* row = &signals_[static_cast<size_t>(m) * capacity_];
+    S* row = &signals_[static_cast<size_t>(m) * capacity_];
     row[cell] = row[mother];
   }
   frozen_ = false;
   return cell;
 }
 
-void GrnBatch::SetInputs(int cell,
-                         const std::array<double, kInputChannels>& values) {
+template <typename S>
+void GrnBatchT<S>::SetInputs(int cell,
+                             const std::array<double, kInputChannels>& values) {
   for (int c = 0; c < kInputChannels; ++c) {
     for (int v : network_->input_nodes(c)) {
-      levels_[static_cast<size_t>(v) * capacity_ + cell] = values[c];
+      levels_[static_cast<size_t>(v) * capacity_ + cell] =
+          static_cast<S>(values[c]);
     }
   }
   frozen_ = false;
 }
 
-void GrnBatch::SetOwnSignals() {
+template <typename S>
+void GrnBatchT<S>::SetOwnSignals() {
   const std::vector<int>& nodes = network_->morphogen_nodes();
   for (size_t m = 0; m < nodes.size(); ++m) {
-    const double* level = level_row(nodes[m]);
-    double* signal = signal_row(static_cast<int>(m));
+    const S* level = level_row(nodes[m]);
+    S* signal = signal_row(static_cast<int>(m));
     for (int c = 0; c < cells_; ++c) {
-      signal[c] = level[c] > 1.0 ? 1.0 : level[c];
+      signal[c] = level[c] > S{1} ? S{1} : level[c];
     }
   }
 }
 
-void GrnBatch::AccumulateSources(int first, int last) {
+template <typename S>
+void GrnBatchT<S>::AccumulateSources(int first, int last) {
+  // `first` and `last` index active_sources_.
   const Network& net = *network_;
   const std::vector<Source>& sources = net.sources();
-  const std::vector<int>& begin = net.row_begin();
-  const int* target = net.weight_target().data();
-  const double* weight = net.weight_value().data();
+  const int* target = row_target_.data();
+  const S* weight = row_weight_.data();
   const int n = cells_;
-  for (int s = first; s < last; ++s) {
+  for (int a = first; a < last; ++a) {
+    const int s = active_sources_[a];
     const Source& source = sources[s];
-    const double* value =
+    const S* value =
         source.kind == SourceKind::kMorphogen
             ? &signals_[static_cast<size_t>(
                             net.nodes()[source.node].morphogen) *
                         capacity_]
             : &levels_[static_cast<size_t>(source.node) * capacity_];
-    for (int k = begin[s]; k < begin[s + 1]; ++k) {
-      double* a = &activation_[static_cast<size_t>(target[k]) * capacity_];
-      const double w = weight[k];
-      for (int c = 0; c < n; ++c) a[c] += w * value[c];
+    for (int k = row_begin_[a]; k < row_begin_[a + 1]; ++k) {
+      S* acc = &activation_[static_cast<size_t>(target[k]) * capacity_];
+      const S w = weight[k];
+      for (int c = 0; c < n; ++c) acc[c] += w * value[c];
     }
   }
 }
 
-void GrnBatch::FreezeInputs() {
-  std::fill(activation_.begin(), activation_.end(), 0.0);
-  AccumulateSources(0, network_->input_source_count());
+template <typename S>
+void GrnBatchT<S>::FreezeInputs() {
+  std::fill(activation_.begin(), activation_.end(), S{0});
+  AccumulateSources(0, active_input_sources_);
   input_partial_ = activation_;
   frozen_ = true;
 }
 
-void GrnBatch::Step() {
+template <typename S>
+void GrnBatchT<S>::Step() {
   const Network& net = *network_;
-  const int sources = static_cast<int>(net.sources().size());
+  const int sources = static_cast<int>(active_sources_.size());
   if (frozen_) {
     std::copy(input_partial_.begin(), input_partial_.end(),
               activation_.begin());
-    AccumulateSources(net.input_source_count(), sources);
+    AccumulateSources(active_input_sources_, sources);
   } else {
-    std::fill(activation_.begin(), activation_.end(), 0.0);
+    std::fill(activation_.begin(), activation_.end(), S{0});
     AccumulateSources(0, sources);
   }
   // All activations are computed before any level changes: synchronous.
   const std::vector<int>& targets = net.targets();
-  const double dt = dt_;
+  const S dt = dt_;
   const int n = cells_;
-  for (size_t t = 0; t < targets.size(); ++t) {
-    double* a = &activation_[t * capacity_];
-    double* level = &levels_[static_cast<size_t>(targets[t]) * capacity_];
+  for (int t : active_targets_) {
+    S* a = &activation_[static_cast<size_t>(t) * capacity_];
+    S* level = &levels_[static_cast<size_t>(targets[t]) * capacity_];
     for (int c = 0; c < n; ++c) {
-      const double l = level[c];
-      const double x = l + (Tanh(a[c] * 0.5) - l) * dt;
-      level[c] = x < 0.0 ? 0.0 : (x > 1.0 ? 1.0 : x);
+      const S l = level[c];
+      const S x = l + (TanhOf(a[c] * S{0.5}) - l) * dt;
+      level[c] = x < S{0} ? S{0} : (x > S{1} ? S{1} : x);
     }
   }
 }
 
-double GrnBatch::Output(int cell, OutputChannel channel) const {
+template <typename S>
+double GrnBatchT<S>::Output(int cell, OutputChannel channel) const {
   // Levels lie in [0, 1], so starting from 0 gives the maximum (and 0 for
   // a channel without nodes). A NaN level is returned, never hidden.
   double value = 0.0;
@@ -135,10 +188,28 @@ double GrnBatch::Output(int cell, OutputChannel channel) const {
   return value;
 }
 
-void GrnBatch::ResetOutput(int cell, OutputChannel channel) {
+template <typename S>
+void GrnBatchT<S>::OutputAll(OutputChannel channel, double* out) const {
+  // Same order and rule as Output(): the maximum from 0, NaN kept.
+  for (int c = 0; c < cells_; ++c) out[c] = 0.0;
   for (int v : network_->output_nodes(static_cast<int>(channel))) {
-    levels_[static_cast<size_t>(v) * capacity_ + cell] = 0.0;
+    const S* row = level_row(v);
+    for (int c = 0; c < cells_; ++c) {
+      const double l = row[c];
+      if (std::isnan(out[c])) continue;  // The first NaN stays.
+      if (std::isnan(l) || l > out[c]) out[c] = l;
+    }
   }
 }
+
+template <typename S>
+void GrnBatchT<S>::ResetOutput(int cell, OutputChannel channel) {
+  for (int v : network_->output_nodes(static_cast<int>(channel))) {
+    levels_[static_cast<size_t>(v) * capacity_ + cell] = S{0};
+  }
+}
+
+template class GrnBatchT<double>;
+template class GrnBatchT<float>;
 
 }  // namespace animat

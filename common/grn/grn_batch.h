@@ -3,8 +3,10 @@
 //
 // State is stored node-major with the cells of one node contiguous, so one
 // weight updates all cells in a vectorisable loop; results do not depend on
-// vectorisation. The batch keeps a reference to its Network, which must
-// outlive it. Not thread-safe; one batch per evaluation.
+// vectorisation. The scalar type S (double or float) is the arithmetic of
+// levels, weights, signals and tanh (GrnParams::precision); values cross
+// the interface as double. The batch keeps a reference to its Network,
+// which must outlive it. Not thread-safe; one batch per evaluation.
 #ifndef ANIMAT_COMMON_GRN_GRN_BATCH_H_
 #define ANIMAT_COMMON_GRN_GRN_BATCH_H_
 
@@ -17,10 +19,13 @@
 
 namespace animat {
 
-class GrnBatch {
+template <typename S>
+class GrnBatchT {
  public:
+  using Scalar = S;
+
   // Holds up to `capacity` cells (> 0).
-  GrnBatch(const Network& network, const GrnParams& params, int capacity);
+  GrnBatchT(const Network& network, const GrnParams& params, int capacity);
 
   int cells() const { return cells_; }
   int capacity() const { return capacity_; }
@@ -37,7 +42,7 @@ class GrnBatch {
   void SetInputs(int cell, const std::array<double, kInputChannels>& values);
   // Morphogen signals M, one row of capacity() per morphogen (cells
   // contiguous): set them before Step().
-  double* signal_row(int morphogen) {
+  S* signal_row(int morphogen) {
     return &signals_[static_cast<size_t>(morphogen) * capacity_];
   }
   // Sets every cell's signals to its own levels, min(1, L) (a cell alone:
@@ -49,6 +54,13 @@ class GrnBatch {
   // bit-identical with and without freezing.
   void FreezeInputs();
 
+  // From now on Step() updates only the nodes marked in `needed` (indexed
+  // by node; see Network::NodesReaching): the others keep their levels. A
+  // needed node's inputs all come from needed nodes, so its trajectory is
+  // bit-identical to an unrestricted run. An empty vector lifts the
+  // restriction.
+  void Restrict(const std::vector<bool>& needed);
+
   // One synchronous update of every cell:
   //   L <- clamp(L + (tanh(A / 2) - L) * dt, 0, 1).
   // A NaN level stays NaN (never clamped to a number).
@@ -58,11 +70,14 @@ class GrnBatch {
     return levels_[static_cast<size_t>(node) * capacity_ + cell];
   }
   // Levels of one node for all cells (cells contiguous).
-  const double* level_row(int node) const {
+  const S* level_row(int node) const {
     return &levels_[static_cast<size_t>(node) * capacity_];
   }
   // The channel's value: the maximum level of its output nodes, 0 if none.
   double Output(int cell, OutputChannel channel) const;
+  // The channel's value for every cell: out[c] = Output(c, channel), for
+  // c < cells().
+  void OutputAll(OutputChannel channel, double* out) const;
   // Sets every output node of the channel to 0 in this cell.
   void ResetOutput(int cell, OutputChannel channel);
 
@@ -70,15 +85,31 @@ class GrnBatch {
   void AccumulateSources(int first, int last);
 
   const Network* network_;
-  double dt_;
+  S dt_;
   int capacity_;
   int cells_ = 0;
   bool frozen_ = false;
-  std::vector<double> levels_;         // node-major, capacity per node
-  std::vector<double> signals_;        // morphogen-major
-  std::vector<double> activation_;     // target-major
-  std::vector<double> input_partial_;  // target-major, when frozen
+  std::vector<S> levels_;         // node-major, capacity per node
+  std::vector<S> signals_;        // morphogen-major
+  std::vector<S> activation_;     // target-major
+  std::vector<S> input_partial_;  // target-major, when frozen
+  // What Step() computes: indices into network().targets(), and the
+  // network's sparse rows restricted to active sources and targets, with
+  // the weights in S (row r of source active_sources_[r] spans
+  // [row_begin_[r], row_begin_[r + 1]) of row_target_ and row_weight_).
+  std::vector<int> active_targets_;
+  std::vector<int> active_sources_;
+  int active_input_sources_ = 0;  // Leading input sources among them.
+  std::vector<int> row_begin_;
+  std::vector<int> row_target_;
+  std::vector<S> row_weight_;
 };
+
+using GrnBatch = GrnBatchT<double>;
+using GrnBatchF = GrnBatchT<float>;
+
+extern template class GrnBatchT<double>;
+extern template class GrnBatchT<float>;
 
 }  // namespace animat
 

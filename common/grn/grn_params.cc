@@ -1,5 +1,7 @@
 #include "common/grn/grn_params.h"
 
+#include <string>
+
 #include "common/base/validate.h"
 
 namespace animat {
@@ -10,6 +12,21 @@ Status GrnParamsFromProto(const v1::GrnConfig& m, GrnParams* params) {
   if (m.has_decay_length()) p.decay_length = m.decay_length();
   if (m.has_cutoff()) p.cutoff = m.cutoff();
   if (m.has_dt()) p.dt = m.dt();
+  if (m.has_precision()) {
+    switch (m.precision()) {
+      case v1::GrnConfig::PRECISION_UNSPECIFIED:
+        break;
+      case v1::GrnConfig::DOUBLE:
+        p.precision = Precision::kDouble;
+        break;
+      case v1::GrnConfig::FLOAT:
+        p.precision = Precision::kFloat;
+        break;
+      default:
+        return Status::InvalidArgument("grn.precision: unknown value " +
+                                       std::to_string(m.precision()));
+    }
+  }
   Status status = FirstError({
       RequireNonNegative("grn.weight_max", p.weight_max),
       RequirePositive("grn.decay_length", p.decay_length),
@@ -28,6 +45,8 @@ v1::GrnConfig GrnParamsToProto(const GrnParams& p) {
   m.set_decay_length(p.decay_length);
   m.set_cutoff(p.cutoff);
   m.set_dt(p.dt);
+  m.set_precision(p.precision == Precision::kFloat ? v1::GrnConfig::FLOAT
+                                                   : v1::GrnConfig::DOUBLE);
   return m;
 }
 

@@ -8,11 +8,15 @@
 
 namespace animat {
 
+// Arithmetic of the network dynamics and signals.
+enum class Precision { kDouble, kFloat };
+
 struct GrnParams {
   double weight_max = 10.0;   // Weight at distance 0.
   double decay_length = 1.0;  // w = weight_max * exp(-d / decay_length).
   double cutoff = 3.0;        // Pairs with d >= cutoff do not bind.
   double dt = 0.05;           // Concentration update step.
+  Precision precision = Precision::kDouble;
 };
 
 // Overwrites the fields present in `message` after checking them; on error

@@ -184,6 +184,36 @@ double Network::Weight(SourceKind kind, int from, int to) const {
   return 0.0;
 }
 
+std::vector<bool> Network::NodesReaching(
+    std::span<const OutputChannel> channels) const {
+  // Reverse reachability: predecessors of each node.
+  std::vector<std::vector<int>> predecessors(nodes_.size());
+  for (size_t s = 0; s < successors_.size(); ++s) {
+    for (int u : successors_[s]) predecessors[u].push_back(static_cast<int>(s));
+  }
+  std::vector<bool> reaches(nodes_.size(), false);
+  std::vector<int> stack;
+  for (OutputChannel channel : channels) {
+    for (int v : output_nodes_[static_cast<int>(channel)]) {
+      if (!reaches[v]) {
+        reaches[v] = true;
+        stack.push_back(v);
+      }
+    }
+  }
+  while (!stack.empty()) {
+    const int v = stack.back();
+    stack.pop_back();
+    for (int p : predecessors[v]) {
+      if (!reaches[p]) {
+        reaches[p] = true;
+        stack.push_back(p);
+      }
+    }
+  }
+  return reaches;
+}
+
 Viability Network::CheckViability() const {
   std::vector<bool> reached(nodes_.size(), false);
   std::vector<int> stack;

@@ -7,6 +7,7 @@
 #define ANIMAT_COMMON_GRN_NETWORK_H_
 
 #include <array>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -110,6 +111,12 @@ class Network {
   // MODEL §2: a path from some input to a DIVIDE output, and one from some
   // input to an EXPAND or CONTRACT output.
   Viability CheckViability() const;
+
+  // Which nodes can influence an output node of one of `channels`: the
+  // output nodes themselves and every node with a path to one in the
+  // binding graph. Indexed by node.
+  std::vector<bool> NodesReaching(
+      std::span<const OutputChannel> channels) const;
 
  private:
   std::vector<Node> nodes_;

@@ -5,6 +5,18 @@
 #include "common/base/validate.h"
 
 namespace animat {
+namespace {
+
+// "rk4" -> "RK4": the enum value's name in config files.
+std::string UpperCase(const char* name) {
+  std::string upper(name);
+  for (char& c : upper) {
+    if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
+  }
+  return upper;
+}
+
+}  // namespace
 
 const char* IntegratorName(Integrator integrator) {
   switch (integrator) {
@@ -103,6 +115,22 @@ Status PhysicsParamsFromProto(const v1::PhysicsConfig& m,
       p.contacts && p.backend != PhysicsBackend::kBullet
           ? Status::InvalidArgument(
                 "physics.contacts: contacts need backend BULLET")
+          : Status::Ok(),
+      // Bullet integrates by semi-implicit Euler itself, with our forces
+      // (drag among them) applied as given.
+      p.backend == PhysicsBackend::kBullet &&
+              p.integrator != Integrator::kSemiImplicitEuler
+          ? Status::InvalidArgument(
+                "physics.integrator: the BULLET backend integrates with "
+                "semi-implicit Euler only, got " +
+                UpperCase(IntegratorName(p.integrator)))
+          : Status::Ok(),
+      p.backend == PhysicsBackend::kBullet &&
+              p.drag_update != DragUpdate::kExplicit
+          ? Status::InvalidArgument(
+                "physics.drag_update: the BULLET backend applies drag "
+                "explicitly only, got " +
+                UpperCase(DragUpdateName(p.drag_update)))
           : Status::Ok(),
   });
   if (!status.ok()) return status;

@@ -299,7 +299,8 @@ TEST(TanhInPlaceTest, MatchesScalarBitwise) {
 
 TEST(InPlaceTest, EmptyArrayIsFine) {
   ExpInPlace(nullptr, 0);
-  TanhInPlace(nullptr, 0);
+  TanhInPlace(static_cast<double*>(nullptr), 0);
+  TanhInPlace(static_cast<float*>(nullptr), 0);
 }
 
 }  // namespace

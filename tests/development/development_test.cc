@@ -187,6 +187,8 @@ TEST_F(DevelopmentTest, MaternalInputsAreReadAtTheCellsPosition) {
                                    static_cast<int>(InputChannel::kMaternal1)));
   g.elements.push_back(MakeElement(ElementType::kP, 1, 0, 0));
   g.elements.push_back(MakeElement(ElementType::kGInternal, 1, 5, 5));
+  // An output downstream, so the unit influences one and is computed.
+  g.elements.push_back(Output(OutputChannel::kExpand, 5.5, 5));
   DevelopmentParams params;
   params.steps = 1;
   params.last_division_step = 1;
@@ -212,6 +214,9 @@ TEST_F(DevelopmentTest, MorphogenSignalsUseHistoryAndStartOfStepPositions) {
   g.elements.push_back(MakeElement(ElementType::kGInternal, 1, 9, 9));
   g.elements.push_back(Output(OutputChannel::kDivide, 5, 5));
   g.elements.push_back(Output(OutputChannel::kRotateRight, 6, 5));
+  // EXPAND (no effect on development) downstream of the receiving unit, so
+  // it influences an output and is computed.
+  g.elements.push_back(Output(OutputChannel::kExpand, 9.5, 9));
   DevelopmentParams params;
   params.steps = 200;
   params.last_division_step = 200;

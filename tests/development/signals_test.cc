@@ -579,5 +579,60 @@ TEST(SignalParamsTest, InvalidValuesAreRejectedNamingTheField) {
   }
 }
 
+// Three morphogen makers excited by UNIFORM with different strengths.
+Genome ThreeMorphogenGenome() {
+  Genome g;
+  g.elements.push_back(MakeElement(ElementType::kSIn, 1, 0, 0,
+                                   static_cast<int>(InputChannel::kUniform)));
+  for (int m = 0; m < 3; ++m) {
+    g.elements.push_back(MakeElement(ElementType::kP, 1, 0.5 * m, 0));
+    g.elements.push_back(MakeElement(ElementType::kGMorphogen, 1, 8, 8));
+  }
+  return g;
+}
+
+TEST(MorphogenFieldTest, RestrictionKeepsTheKeptSignalsAndTheirHistory) {
+  const Network net = Network::Build(ThreeMorphogenGenome(), GrnParams{});
+  ASSERT_EQ(net.morphogen_count(), 3);
+  const std::vector<Vec2> positions = {{0, 0}, {1.3, 0.4}, {-2.0, 3.1}};
+  GrnBatch grn_full(net, GrnParams{}, 3);
+  GrnBatch grn_kept(net, GrnParams{}, 3);
+  MorphogenField full(3, 3, SignalParams{});
+  MorphogenField kept(3, 3, SignalParams{});
+  for (int c = 0; c < 3; ++c) {
+    grn_full.AddCell();
+    grn_kept.AddCell();
+    full.AddCell();
+    kept.AddCell();
+    grn_full.SetInputs(c, Uniform(0.4 * c + 0.2));
+    grn_kept.SetInputs(c, Uniform(0.4 * c + 0.2));
+  }
+  full.SetGeometry(positions);
+  kept.SetGeometry(positions);
+  std::vector<double> dropped;  // Morphogen 1's signals when dropped.
+  for (int step = 0; step < 300; ++step) {
+    if (step == 40) {
+      kept.Restrict({0, 2});
+      for (int c = 0; c < 3; ++c) dropped.push_back(grn_kept.signal_row(1)[c]);
+    }
+    full.Record(step, grn_full);
+    full.Apply(step, &grn_full);
+    grn_full.Step();
+    kept.Record(step, grn_kept);
+    kept.Apply(step, &grn_kept);
+    grn_kept.Step();
+    for (int m : {0, 2}) {
+      for (int c = 0; c < 3; ++c) {
+        ASSERT_EQ(grn_kept.signal_row(m)[c], grn_full.signal_row(m)[c])
+            << "morphogen " << m << " step " << step;
+      }
+    }
+  }
+  EXPECT_EQ(kept.morphogens(), 2);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_EQ(grn_kept.signal_row(1)[c], dropped[c]);  // No longer applied.
+  }
+}
+
 }  // namespace
 }  // namespace animat

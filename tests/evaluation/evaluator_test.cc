@@ -98,7 +98,7 @@ TEST(EvaluatorTest, RunawayMotionIsANumericalFailure) {
 
 class PhaseRecorder : public EvaluationObserver {
  public:
-  void OnDevelopmentStep(int step, const Development&) override {
+  void OnDevelopmentStep(int step, const Embryo&) override {
     development_steps.push_back(step);
   }
   void OnBody(const Body& body, std::span<const double> expand,

@@ -19,6 +19,7 @@ namespace {
 
 struct Golden {
   const char* genome;
+  Precision precision;
   uint64_t fitness_bits;
   uint64_t state_hash;
 };
@@ -34,7 +35,9 @@ TEST_P(GoldenTest, FitnessBitsAndFinalStateAreFixed) {
           .ok());
   Result<Genome> genome = GenomeFromProto(message);
   ASSERT_TRUE(genome.ok());
-  const EvaluationResult r = Evaluate(*genome, ModelConfig{});
+  ModelConfig config;
+  config.grn.precision = golden.precision;
+  const EvaluationResult r = Evaluate(*genome, config);
   ASSERT_EQ(r.status, EvalStatus::kOk) << r.reason;
   ASSERT_TRUE(r.fitness.has_value());
   EXPECT_EQ(std::bit_cast<uint64_t>(*r.fitness), golden.fitness_bits)
@@ -47,11 +50,19 @@ INSTANTIATE_TEST_SUITE_P(
     Genomes, GoldenTest,
     ::testing::Values(
         // A 32-cell body with 40 chambers (the benchmark genome).
-        Golden{"seed-1198.json", 0x3fbba73be0ef9f5eull, 0xb803f0ffdb5f8569ull},
+        Golden{"seed-1198.json", Precision::kDouble, 0x3fbba73be0ef9f5eull,
+               0xc9385f269eba3b50ull},
         // A chain of 32 cells (no chambers), the best random mover.
-        Golden{"seed-1203.json", 0x40008b7cce86237eull, 0xaf01c57d3a431361ull},
+        Golden{"seed-1203.json", Precision::kDouble, 0x40008b7cce86237eull,
+               0x3c32a0c09749ca88ull},
         // A compact body that barely moves (fitness ~1.6e-9).
-        Golden{"seed-139.json", 0x3e1b71602ce579ccull, 0xc99bb08802bdb1e4ull}));
+        Golden{"seed-139.json", Precision::kDouble, 0x3e1b71602ce579ccull,
+               0x7f3c6cee70ea41a1ull},
+        // Single-precision network arithmetic.
+        Golden{"seed-1198.json", Precision::kFloat, 0x3fbba73efa17ef20ull,
+               0xafef83c87623ea05ull},
+        Golden{"seed-1203.json", Precision::kFloat, 0x40008b6e86b32e98ull,
+               0x238bf96f27d95dcfull}));
 
 }  // namespace
 }  // namespace animat

@@ -138,8 +138,8 @@ TEST(HardCaseTest, RandomCompactBodiesSurviveMaximumActuation) {
 }
 
 TEST(HardCaseTest, CoincidentCellsFailAsADegenerateBody) {
-  Result<Body> body = BuildBody(std::vector<Vec2>{
-      {0.0, 0.0}, {2.0, 0.0}, {1.0, 1.5}, {2.0, 0.0}});
+  Result<Body> body = BuildBody(
+      std::vector<Vec2>{{0.0, 0.0}, {2.0, 0.0}, {1.0, 1.5}, {2.0, 0.0}});
   ASSERT_FALSE(body.ok());
   EXPECT_NE(body.status().message().find("coincident"), std::string::npos);
 }

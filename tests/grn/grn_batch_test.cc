@@ -819,5 +819,105 @@ TEST(GrnBatchTest, EmptyGenomeStepsWithoutError) {
   batch.ResetOutput(0, OutputChannel::kDivide);
 }
 
+TEST(NetworkReachTest, NodesReachingFollowsTheBindingGraphBackwards) {
+  // UNIFORM -> unit A -> EXPAND; unit B -> DIVIDE; A's factor is far from
+  // DIVIDE and B's from EXPAND.
+  const Genome genome = MakeGenome({
+      In(InputChannel::kUniform, 0.0, 0.0),    // node 0
+      P(0.5, 0.0), GInt(5.0, 0.0),             // node 1 (A)
+      P(20.0, 20.0), GInt(30.0, 30.0),         // node 2 (B)
+      Out(OutputChannel::kExpand, 5.5, 0.0),   // node 3
+      Out(OutputChannel::kDivide, 30.5, 30.0)  // node 4
+  });
+  const Network net = Network::Build(genome, GrnParams{});
+  ASSERT_EQ(net.node_count(), 5);
+  constexpr OutputChannel kExpand[] = {OutputChannel::kExpand};
+  EXPECT_EQ(net.NodesReaching(kExpand),
+            (std::vector<bool>{true, true, false, true, false}));
+  constexpr OutputChannel kDivide[] = {OutputChannel::kDivide};
+  EXPECT_EQ(net.NodesReaching(kDivide),
+            (std::vector<bool>{false, false, true, false, true}));
+}
+
+template <typename S>
+void ExpectRestrictionKeepsNeededNodesBitIdentical(uint64_t seed) {
+  uint64_t individual = 0;
+  Genome genome;
+  ASSERT_TRUE(NextRandomGenomeWithMorphogens(seed, &individual, &genome));
+  const Network net = Network::Build(genome, GrnParams{});
+  constexpr OutputChannel kMotion[] = {OutputChannel::kExpand,
+                                       OutputChannel::kContract};
+  const std::vector<bool> needed = net.NodesReaching(kMotion);
+  GrnBatchT<S> full(net, GrnParams{}, 3);
+  GrnBatchT<S> restricted(net, GrnParams{}, 3);
+  for (GrnBatchT<S>* batch : {&full, &restricted}) {
+    for (int c = 0; c < 3; ++c) {
+      batch->AddCell();
+      batch->SetInputs(c, {0.2 * c, 0.5, 0.9 - 0.1 * c, 1.0});
+    }
+    for (int step = 0; step < 50; ++step) {
+      batch->SetOwnSignals();
+      batch->Step();
+    }
+  }
+  restricted.Restrict(needed);
+  restricted.FreezeInputs();
+  std::vector<double> frozen;
+  for (int v = 0; v < net.node_count(); ++v)
+    frozen.push_back(restricted.level(0, v));
+  for (int step = 0; step < 200; ++step) {
+    full.SetOwnSignals();
+    full.Step();
+    restricted.SetOwnSignals();
+    restricted.Step();
+    for (int v = 0; v < net.node_count(); ++v) {
+      for (int c = 0; c < 3; ++c) {
+        if (needed[v]) {
+          ASSERT_EQ(restricted.level(c, v), full.level(c, v))
+              << "node " << v << " step " << step;
+        }
+      }
+      if (!needed[v]) {
+        ASSERT_EQ(restricted.level(0, v), frozen[v]) << v;
+      }
+    }
+  }
+}
+
+TEST(GrnBatchTest, RestrictionKeepsNeededNodesBitIdenticalInDouble) {
+  ExpectRestrictionKeepsNeededNodesBitIdentical<double>(61);
+  ExpectRestrictionKeepsNeededNodesBitIdentical<double>(62);
+}
+
+TEST(GrnBatchTest, RestrictionKeepsNeededNodesBitIdenticalInFloat) {
+  ExpectRestrictionKeepsNeededNodesBitIdentical<float>(63);
+}
+
+TEST(GrnBatchTest, FloatTracksDouble) {
+  uint64_t individual = 0;
+  Genome genome;
+  ASSERT_TRUE(NextRandomGenomeWithMorphogens(71, &individual, &genome));
+  const Network net = Network::Build(genome, GrnParams{});
+  GrnBatchT<double> wide(net, GrnParams{}, 2);
+  GrnBatchT<float> narrow(net, GrnParams{}, 2);
+  for (int c = 0; c < 2; ++c) {
+    wide.AddCell();
+    narrow.AddCell();
+    wide.SetInputs(c, {0.3, 0.6 * c, 0.1, 1.0});
+    narrow.SetInputs(c, {0.3, 0.6 * c, 0.1, 1.0});
+  }
+  for (int step = 0; step < 400; ++step) {
+    wide.SetOwnSignals();
+    wide.Step();
+    narrow.SetOwnSignals();
+    narrow.Step();
+  }
+  for (int v = 0; v < net.node_count(); ++v) {
+    for (int c = 0; c < 2; ++c) {
+      EXPECT_NEAR(narrow.level(c, v), wide.level(c, v), 1e-5) << v;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace animat

@@ -75,7 +75,8 @@ PhysicsParams NoDrag(Integrator integrator, int substeps) {
 double ConvergenceRatio(Integrator integrator, int s) {
   const Problem p = SmoothProblem(11);
   const int steps = 40;  // Two time units.
-  const MotionState reference = Simulate(p, NoDrag(Integrator::kRk4, 64), steps);
+  const MotionState reference =
+      Simulate(p, NoDrag(Integrator::kRk4, 64), steps);
   const double coarse =
       MaxDistance(Simulate(p, NoDrag(integrator, s), steps), reference);
   const double fine =
