@@ -1,16 +1,22 @@
-// Cost of one evaluation and of its parts, for the reference workload: a
-// 32-cell animat with a 20-node network (bench/data/bench-genome.json).
+// Cost of one evaluation and of each of its parts, for the reference
+// workload: a 32-cell animat with a 20-node network
+// (bench/data/bench-genome.json).
 //
 //   build/bin/animat-bench [--benchmark_filter=...]
 //
-// BM_Evaluate reports ms per full evaluation (6600 steps); the per-step
-// benchmarks report us per simulation step of the motion phase: physics
-// (BM_PhysicsStep), and the network side (BM_GrnStep) split into its
-// network update (BM_NetworkStep) and morphogen signals (BM_SignalStep).
+// BM_Evaluate reports ms per full evaluation (6600 steps), with double and
+// float network arithmetic. The per-step benchmarks report us per
+// simulation step of the motion phase, set up as the evaluator sets it up
+// (only nodes that influence EXPAND or CONTRACT, inputs frozen): physics
+// (BM_PhysicsStep, per integrator; each force family alone; the Bullet
+// backend with and without contacts), and the network side (BM_GrnStep)
+// split into its network update (BM_NetworkStep) and morphogen signals
+// (BM_SignalStep), each in double and float.
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -20,6 +26,7 @@
 #include "common/evaluation/evaluator.h"
 #include "common/genome/genome_proto.h"
 #include "common/io/proto_file.h"
+#include "common/physics/bullet/bullet_stepper.h"
 #include "common/physics/soft_body.h"
 
 namespace animat {
@@ -42,25 +49,31 @@ const Genome& BenchGenome() {
   return genome;
 }
 
-// The reference workload after development, ready for motion steps.
+// The reference workload after development, ready for motion steps as the
+// evaluator prepares them.
+template <typename S>
 struct Developed {
   ModelConfig config;
   Network network;
-  Development development;
+  DevelopmentT<S> development;
   Body body;
   explicit Developed(const Genome& genome)
       : network(Network::Build(genome, config.grn)),
         development(network, config.grn, config.development, config.signals) {
     development.Run();
-    body = *BuildBody(development.embryo().position);
-    GrnBatch& grn = development.grn();
+    const Embryo& embryo = development.embryo();
+    body = *BuildBody(embryo.position, embryo.radius);
+    constexpr OutputChannel kMotion[] = {OutputChannel::kExpand,
+                                         OutputChannel::kContract};
+    development.RestrictTo(network.NodesReaching(kMotion));
+    GrnBatchT<S>& grn = development.grn();
     for (int cell = 0; cell < grn.cells(); ++cell) {
       grn.SetInputs(
-          cell, InputValuesAt(development.embryo().position[cell],
+          cell, InputValuesAt(embryo.position[cell],
                               development.maternal_sources(), config.signals));
     }
     grn.FreezeInputs();
-    development.field().SetGeometry(development.embryo().position);
+    development.field().SetGeometry(embryo.position);
   }
 };
 
@@ -84,49 +97,128 @@ BENCHMARK(BM_Evaluate)
     ->Arg(1)
     ->Unit(benchmark::kMillisecond);
 
+template <typename S>
 void BM_Development(benchmark::State& state) {
   const Genome& genome = BenchGenome();
   const ModelConfig config;
   const Network network = Network::Build(genome, config.grn);
   for (auto _ : state) {
-    Development development(network, config.grn, config.development,
-                            config.signals);
+    DevelopmentT<S> development(network, config.grn, config.development,
+                                config.signals);
     benchmark::DoNotOptimize(development.Run());
   }
 }
-BENCHMARK(BM_Development)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_Development, double)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_Development, float)->Unit(benchmark::kMillisecond);
 
+// A body of the reference workload with mid-range actuation.
+struct PhysicsSetup {
+  Developed<double> d{BenchGenome()};
+  std::vector<double> expand = std::vector<double>(d.body.nodes(), 0.3);
+  std::vector<double> contract = std::vector<double>(d.body.nodes(), 0.1);
+  MotionState Start() const {
+    return {d.body.position, std::vector<Vec2>(d.body.nodes(), Vec2{})};
+  }
+};
+
+// state.range(0): 0 semi-implicit Euler, 1 velocity Verlet, 2 RK4.
 void BM_PhysicsStep(benchmark::State& state) {
-  Developed d(BenchGenome());
-  SoftBody body(d.body, d.config.physics);
-  std::vector<double> expand(d.body.nodes(), 0.3), contract(d.body.nodes());
-  body.SetActuation(expand, contract);
-  MotionState motion{d.body.position,
-                     std::vector<Vec2>(d.body.nodes(), Vec2{})};
+  PhysicsSetup setup;
+  PhysicsParams params;
+  params.integrator = static_cast<Integrator>(state.range(0));
+  SoftBody body(setup.d.body, params);
+  body.SetActuation(setup.expand, setup.contract);
+  MotionState motion = setup.Start();
   for (auto _ : state) {
     body.Step(&motion);
     benchmark::DoNotOptimize(motion.position.data());
   }
-  state.counters["springs"] = d.body.springs.size();
-  state.counters["chambers"] = d.body.chambers.size();
-  state.counters["skin"] = d.body.skin.size();
+  state.SetLabel(IntegratorName(params.integrator));
+  state.counters["springs"] = setup.d.body.springs.size();
+  state.counters["chambers"] = setup.d.body.chambers.size();
+  state.counters["skin"] = setup.d.body.skin.size();
 }
-BENCHMARK(BM_PhysicsStep)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PhysicsStep)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 
+// state.range(0): 0 springs, 1 pressure, 2 drag, alone.
+void BM_PhysicsForces(benchmark::State& state) {
+  PhysicsSetup setup;
+  SoftBody body(setup.d.body, PhysicsParams{});
+  body.SetActuation(setup.expand, setup.contract);
+  MotionState motion = setup.Start();
+  for (Vec2& v : motion.velocity) v = {0.01, -0.02};
+  std::vector<Vec2> force(setup.d.body.nodes());
+  const char* const kLabels[] = {"springs", "pressure", "drag"};
+  state.SetLabel(kLabels[state.range(0)]);
+  for (auto _ : state) {
+    switch (state.range(0)) {
+      case 0:
+        body.AddSpringForces(motion, force.data());
+        break;
+      case 1:
+        body.AddPressureForces(motion, force.data());
+        break;
+      default:
+        body.AddDragForces(motion, force.data());
+        break;
+    }
+    benchmark::DoNotOptimize(force.data());
+  }
+}
+BENCHMARK(BM_PhysicsForces)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
+
+// state.range(0): contacts off (0) or on (1).
+void BM_BulletStep(benchmark::State& state) {
+  PhysicsSetup setup;
+  PhysicsParams params;
+  params.backend = PhysicsBackend::kBullet;
+  params.contacts = state.range(0) == 1;
+  SoftBody body(setup.d.body, params);
+  body.SetActuation(setup.expand, setup.contract);
+  std::unique_ptr<MotionStepper> bullet =
+      MakeBulletStepper(&body, setup.d.body);
+  MotionState motion = setup.Start();
+  for (auto _ : state) {
+    bullet->Step(&motion);
+    benchmark::DoNotOptimize(motion.position.data());
+  }
+  state.SetLabel(params.contacts ? "contacts" : "no contacts");
+}
+BENCHMARK(BM_BulletStep)->DenseRange(0, 1)->Unit(benchmark::kMicrosecond);
+
+template <typename S>
 void BM_NetworkStep(benchmark::State& state) {
-  Developed d(BenchGenome());
-  GrnBatch& grn = d.development.grn();
+  Developed<S> d(BenchGenome());
+  GrnBatchT<S>& grn = d.development.grn();
   for (auto _ : state) grn.Step();
   state.counters["nodes"] = d.network.node_count();
   state.counters["weights"] = d.network.weight_value().size();
 }
-BENCHMARK(BM_NetworkStep)->Unit(benchmark::kMicrosecond);
+BENCHMARK_TEMPLATE(BM_NetworkStep, double)->Unit(benchmark::kMicrosecond);
+BENCHMARK_TEMPLATE(BM_NetworkStep, float)->Unit(benchmark::kMicrosecond);
+
+template <typename S>
+void BM_SignalStep(benchmark::State& state) {
+  Developed<S> d(BenchGenome());
+  GrnBatchT<S>& grn = d.development.grn();
+  MorphogenFieldT<S>& field = d.development.field();
+  int step = d.config.development.steps;
+  for (auto _ : state) {
+    field.Record(step, grn);
+    field.Apply(step, &grn);
+    ++step;
+  }
+  state.counters["morphogens"] = field.morphogens();
+}
+BENCHMARK_TEMPLATE(BM_SignalStep, double)->Unit(benchmark::kMicrosecond);
+BENCHMARK_TEMPLATE(BM_SignalStep, float)->Unit(benchmark::kMicrosecond);
 
 // One motion step of the whole network side: signals, then network.
+template <typename S>
 void BM_GrnStep(benchmark::State& state) {
-  Developed d(BenchGenome());
-  GrnBatch& grn = d.development.grn();
-  MorphogenField& field = d.development.field();
+  Developed<S> d(BenchGenome());
+  GrnBatchT<S>& grn = d.development.grn();
+  MorphogenFieldT<S>& field = d.development.field();
   int step = d.config.development.steps;
   for (auto _ : state) {
     field.Record(step, grn);
@@ -134,24 +226,9 @@ void BM_GrnStep(benchmark::State& state) {
     grn.Step();
     ++step;
   }
-  state.counters["nodes"] = d.network.node_count();
-  state.counters["morphogens"] = field.morphogens();
 }
-BENCHMARK(BM_GrnStep)->Unit(benchmark::kMicrosecond);
-
-void BM_SignalStep(benchmark::State& state) {
-  Developed d(BenchGenome());
-  GrnBatch& grn = d.development.grn();
-  MorphogenField& field = d.development.field();
-  int step = d.config.development.steps;
-  for (auto _ : state) {
-    field.Record(step, grn);
-    field.Apply(step, &grn);
-    ++step;
-  }
-  state.counters["morphogens"] = field.morphogens();
-}
-BENCHMARK(BM_SignalStep)->Unit(benchmark::kMicrosecond);
+BENCHMARK_TEMPLATE(BM_GrnStep, double)->Unit(benchmark::kMicrosecond);
+BENCHMARK_TEMPLATE(BM_GrnStep, float)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace animat
