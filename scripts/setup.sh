@@ -9,6 +9,7 @@ packages=(
   protobuf-compiler libprotobuf-dev
   libcli11-dev
   libbullet-dev
+  libzmq3-dev cppzmq-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   clang-format
 )

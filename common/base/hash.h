@@ -1,8 +1,9 @@
-// A 64-bit FNV-1a hash for fingerprints of simulation states.
+// A 64-bit FNV-1a hash for fingerprints of simulation states, genomes and
+// configurations.
 //
-// Used for golden-determinism checks and result fingerprints, never for
-// hash tables. Hashes the exact bit patterns of doubles, so two states hash
-// equal only if every bit agrees (+0.0 and -0.0 differ). Not thread-safe
+// Used for golden-determinism checks and fingerprints, never for hash
+// tables or security. Hashes the exact bit patterns of doubles, so two states
+// hash equal only if every bit agrees (+0.0 and -0.0 differ). Not thread-safe
 // per object; cheap to copy.
 #ifndef ANIMAT_COMMON_BASE_HASH_H_
 #define ANIMAT_COMMON_BASE_HASH_H_
@@ -10,6 +11,7 @@
 #include <bit>
 #include <cstdint>
 #include <span>
+#include <string_view>
 
 namespace animat {
 
@@ -22,6 +24,12 @@ class StateHash {
     }
   }
   void AddDouble(double v) { AddU64(std::bit_cast<uint64_t>(v)); }
+  void AddBytes(std::string_view bytes) {
+    for (unsigned char c : bytes) {
+      hash_ ^= c;
+      hash_ *= 0x100000001B3ull;
+    }
+  }
   void AddDoubles(std::span<const double> values) {
     for (double v : values) AddDouble(v);
   }

@@ -206,6 +206,8 @@ const char* EvalStatusName(EvalStatus status) {
       return "numerical_failure";
     case EvalStatus::kInvalidGenome:
       return "invalid_genome";
+    case EvalStatus::kNotEvaluated:
+      return "not_evaluated";
   }
   return "?";
 }

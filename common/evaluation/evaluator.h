@@ -30,10 +30,13 @@ enum class EvalStatus {
   kDegenerateBody,    // Coincident centres or no usable spring graph.
   kNumericalFailure,  // A non-finite or runaway value.
   kInvalidGenome,     // The genome failed ValidateGenome.
+  // Nothing was simulated (never returned by Evaluate): a null-evaluation
+  // worker, or a dispatcher that gave up on the individual.
+  kNotEvaluated,
 };
 
 // "ok", "non_viable", "late_division", "too_few_cells", "degenerate_body",
-// "numerical_failure", "invalid_genome".
+// "numerical_failure", "invalid_genome", "not_evaluated".
 const char* EvalStatusName(EvalStatus status);
 
 struct EvaluationResult {

@@ -1,0 +1,111 @@
+#include "common/protocol/protocol.h"
+
+#include <cmath>
+
+#include <google/protobuf/io/coded_stream.h>
+#include <google/protobuf/io/zero_copy_stream_impl_lite.h>
+
+#include "common/base/hash.h"
+#include "common/protocol/build_info.h"
+
+namespace animat::protocol {
+namespace {
+
+std::string Deterministic(const google::protobuf::MessageLite& message) {
+  std::string out;
+  {
+    google::protobuf::io::StringOutputStream stream(&out);
+    google::protobuf::io::CodedOutputStream coded(&stream);
+    coded.SetSerializationDeterministic(true);
+    message.SerializeToCodedStream(&coded);
+  }
+  return out;
+}
+
+uint64_t Fingerprint(const std::string& bytes) {
+  StateHash hash;
+  hash.AddBytes(bytes);
+  return hash.value();
+}
+
+}  // namespace
+
+const std::string& BuildId() {
+  static const std::string id = std::string("animat ") + kBuildVersion + " " +
+                                kBuildCommit + " " + kBuildCompiler + " " +
+                                kBuildArch;
+  return id;
+}
+
+std::string Encode(v1::Envelope envelope) {
+  envelope.set_protocol_version(kVersion);
+  return envelope.SerializeAsString();
+}
+
+Result<v1::Envelope> Decode(std::string_view frame) {
+  v1::Envelope envelope;
+  if (!envelope.ParseFromArray(frame.data(), static_cast<int>(frame.size()))) {
+    return Status::InvalidArgument("not an animat.v1.Envelope (" +
+                                   std::to_string(frame.size()) + " bytes)");
+  }
+  if (envelope.protocol_version() != kVersion) {
+    return Status::InvalidArgument("protocol version " +
+                                   std::to_string(envelope.protocol_version()) +
+                                   ", expected " + std::to_string(kVersion));
+  }
+  if (envelope.body_case() == v1::Envelope::BODY_NOT_SET) {
+    return Status::InvalidArgument("envelope without a body");
+  }
+  return envelope;
+}
+
+Status ValidateResult(const v1::EvaluationResult& r) {
+  if (!v1::EvaluationResult::Status_IsValid(r.status()) ||
+      r.status() == v1::EvaluationResult::STATUS_UNSPECIFIED) {
+    return Status::InvalidArgument("unknown status " +
+                                   std::to_string(r.status()));
+  }
+  const bool ok = r.status() == v1::EvaluationResult::OK;
+  if (ok != r.has_fitness()) {
+    return Status::InvalidArgument(ok ? "status OK without a fitness"
+                                      : "a fitness without status OK");
+  }
+  if (ok && !(std::isfinite(r.fitness()) && r.fitness() >= 0.0)) {
+    return Status::InvalidArgument("fitness " + std::to_string(r.fitness()));
+  }
+  return Status::Ok();
+}
+
+uint64_t ConfigHash(const v1::Config& config) {
+  return Fingerprint(Deterministic(config));
+}
+
+uint64_t GenomeHash(const v1::Genome& genome) {
+  return Fingerprint(Deterministic(genome));
+}
+
+const char* BodyName(const v1::Envelope& envelope) {
+  switch (envelope.body_case()) {
+    case v1::Envelope::kHello:
+      return "hello";
+    case v1::Envelope::kWelcome:
+      return "welcome";
+    case v1::Envelope::kRefuse:
+      return "refuse";
+    case v1::Envelope::kCredit:
+      return "credit";
+    case v1::Envelope::kWork:
+      return "work";
+    case v1::Envelope::kResults:
+      return "results";
+    case v1::Envelope::kHeartbeat:
+      return "heartbeat";
+    case v1::Envelope::kGoodbye:
+      return "goodbye";
+    case v1::Envelope::BODY_NOT_SET:
+      return "none";
+  }
+  return "unknown";
+}
+
+}  // namespace animat::protocol

@@ -1,0 +1,73 @@
+// The master-worker protocol in one place (zguide's mdp.h habit): version,
+// timing and size limits, the build id, and encoding and decoding of the
+// single-frame Envelope messages (docs/protocol.md).
+//
+// Decoding takes bytes from the network: it never crashes and never
+// throws; anything malformed comes back as a Status saying what is wrong.
+// All functions are thread-safe.
+#ifndef ANIMAT_COMMON_PROTOCOL_PROTOCOL_H_
+#define ANIMAT_COMMON_PROTOCOL_PROTOCOL_H_
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "animat/v1/config.pb.h"
+#include "animat/v1/genome.pb.h"
+#include "animat/v1/protocol.pb.h"
+#include "animat/v1/trace.pb.h"
+#include "common/base/status.h"
+
+namespace animat::protocol {
+
+// Bumped on any incompatible change of protocol.proto's meaning.
+inline constexpr uint32_t kVersion = 1;
+
+// Default heartbeat interval; a peer silent for kLiveness intervals is
+// presumed dead.
+inline constexpr int kHeartbeatMs = 1000;
+inline constexpr int kLiveness = 3;
+
+// Sockets refuse messages larger than this (ZMQ_MAXMSGSIZE); a Work or
+// Results message is kept well below it by kMaxBatch.
+inline constexpr int64_t kMaxMessageBytes = 64 << 20;
+// Most items in one Work message.
+inline constexpr int kMaxBatch = 256;
+// Evaluations are prefetched: a worker asks for threads * kPrefetch.
+inline constexpr int kPrefetch = 2;
+// An individual whose evaluation killed a worker or timed out this many
+// times is recorded as failed instead of retried.
+inline constexpr int kMaxAttempts = 3;
+
+// Worker reconnection backoff after the master goes silent.
+inline constexpr int kReconnectMinMs = 100;
+inline constexpr int kReconnectMaxMs = 5000;
+
+// Identifies the simulator build: project version, git commit, compiler and
+// target architecture. Workers of another build are refused: they may give
+// different bits.
+const std::string& BuildId();
+
+// Serialises an envelope stamped with kVersion.
+std::string Encode(v1::Envelope envelope);
+
+// Parses one frame. Fails on bytes that are not an Envelope, on an
+// envelope of another protocol version, and on an envelope with no body.
+Result<v1::Envelope> Decode(std::string_view frame);
+
+// A result a master may record: a known status other than unspecified,
+// and a fitness present, finite and >= 0 exactly when the status is OK.
+Status ValidateResult(const v1::EvaluationResult& result);
+
+// 64-bit fingerprints of the deterministic serialisation (FNV-1a): the
+// config a session runs with, the genome an individual carries.
+uint64_t ConfigHash(const v1::Config& config);
+uint64_t GenomeHash(const v1::Genome& genome);
+
+// "hello", "work", ... for log lines; "none" without a body.
+const char* BodyName(const v1::Envelope& envelope);
+
+}  // namespace animat::protocol
+
+#endif  // ANIMAT_COMMON_PROTOCOL_PROTOCOL_H_

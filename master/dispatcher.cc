@@ -1,0 +1,386 @@
+#include "master/dispatcher.h"
+
+#include <algorithm>
+#include <zmq.hpp>
+
+#include "common/protocol/zmq_poll.h"
+
+namespace animat {
+namespace {
+
+// Most credit a worker may hold: a hostile or broken peer asking for more
+// only gets this much (and its leases expire if it never answers).
+int CreditCap(int threads) {
+  return std::max(1, threads) * protocol::kPrefetch * 2;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<Dispatcher>> Dispatcher::Create(
+    zmq::context_t* context, DispatcherOptions options,
+    const ModelConfig& config) {
+  std::unique_ptr<Dispatcher> dispatcher(
+      new Dispatcher(context, std::move(options), ConfigToProto(config)));
+  try {
+    dispatcher->socket_->bind(dispatcher->options_.endpoint);
+    dispatcher->endpoint_ =
+        dispatcher->socket_->get(zmq::sockopt::last_endpoint);
+  } catch (const zmq::error_t& e) {
+    return Status::IoError("cannot bind " + dispatcher->options_.endpoint +
+                           ": " + e.what());
+  }
+  dispatcher->options_.log("listening on " + dispatcher->endpoint_ +
+                           " (build " + protocol::BuildId() + ")");
+  return dispatcher;
+}
+
+Dispatcher::Dispatcher(zmq::context_t* context, DispatcherOptions options,
+                       v1::Config config)
+    : options_(std::move(options)),
+      config_(std::move(config)),
+      config_hash_(protocol::ConfigHash(config_)),
+      socket_(
+          std::make_unique<zmq::socket_t>(*context, zmq::socket_type::router)) {
+  socket_->set(zmq::sockopt::linger, 0);
+  socket_->set(zmq::sockopt::maxmsgsize, protocol::kMaxMessageBytes);
+  // Sending to a vanished worker fails at once instead of queueing.
+  socket_->set(zmq::sockopt::router_mandatory, 1);
+}
+
+Dispatcher::~Dispatcher() = default;
+
+void Dispatcher::Submit(uint64_t individual, const v1::Genome& genome) {
+  if (pending_.count(individual) != 0) return;
+  Individual& entry = pending_[individual];
+  entry.item.set_individual(individual);
+  *entry.item.mutable_genome() = genome;
+  entry.item.set_genome_hash(protocol::GenomeHash(genome));
+  queue_.push_back(individual);
+}
+
+std::vector<Completion> Dispatcher::Poll(int timeout_ms) {
+  std::vector<Completion> done;
+  const Clock::time_point end =
+      Clock::now() + std::chrono::milliseconds(timeout_ms);
+  for (;;) {
+    Dispatch();
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        end - Clock::now());
+    const long wait = std::clamp<long>(left.count(), 0,
+                                       std::max(1, options_.heartbeat_ms / 4));
+    zmq::pollitem_t item = {static_cast<void*>(*socket_), 0, ZMQ_POLLIN, 0};
+    protocol::Poll(&item, 1, std::chrono::milliseconds(wait));
+    if (item.revents & ZMQ_POLLIN) Receive(&done);
+    Housekeep(&done);
+    if (!done.empty() || Clock::now() >= end) break;
+  }
+  Dispatch();
+  return done;
+}
+
+void Dispatcher::Receive(std::vector<Completion>* done) {
+  for (int burst = 0; burst < 10000; ++burst) {
+    std::vector<zmq::message_t> frames;
+    zmq::message_t frame;
+    if (!socket_->recv(frame, zmq::recv_flags::dontwait)) return;
+    frames.push_back(std::move(frame));
+    while (frames.back().more()) {
+      zmq::message_t next;
+      if (!socket_->recv(next, zmq::recv_flags::dontwait)) break;
+      frames.push_back(std::move(next));
+    }
+    const std::string identity = frames[0].to_string();
+    if (frames.size() != 2) {
+      Ignore("a message of " + std::to_string(frames.size()) +
+             " frames (expected identity + 1)");
+      continue;
+    }
+    Result<v1::Envelope> envelope =
+        protocol::Decode(frames[1].to_string_view());
+    if (!envelope.ok()) {
+      const auto it = workers_.find(identity);
+      Ignore("a malformed message from " +
+             (it == workers_.end() ? std::string("an unknown peer")
+                                   : it->second.name) +
+             ": " + envelope.status().message());
+      continue;
+    }
+    Handle(identity, *envelope, done);
+  }
+}
+
+void Dispatcher::Handle(const std::string& identity,
+                        const v1::Envelope& envelope,
+                        std::vector<Completion>* done) {
+  if (envelope.has_hello()) {
+    Greet(identity, envelope.hello());
+    return;
+  }
+  const auto it = workers_.find(identity);
+  if (it == workers_.end()) {
+    // A worker from before a restart, or a stranger: it will time out and
+    // say hello again. Logged once per peer.
+    if (strangers_.size() < 10000 && strangers_.insert(identity).second) {
+      Ignore(std::string("a ") + protocol::BodyName(envelope) +
+             " from a peer that has not said hello");
+    } else {
+      ++stats_.ignored;
+    }
+    return;
+  }
+  WorkerState& worker = it->second;
+  worker.last_heard = Clock::now();
+  switch (envelope.body_case()) {
+    case v1::Envelope::kCredit: {
+      const int cap = CreditCap(worker.threads);
+      const int64_t asked =
+          static_cast<int64_t>(worker.credit) + envelope.credit().credit();
+      if (asked > cap) {
+        Ignore("credit beyond " + std::to_string(cap) + " from " + worker.name);
+      }
+      worker.credit = static_cast<int>(std::min<int64_t>(asked, cap));
+      break;
+    }
+    case v1::Envelope::kResults:
+      Collect(identity, worker, envelope.results(), done);
+      break;
+    case v1::Envelope::kHeartbeat:
+      break;
+    case v1::Envelope::kGoodbye: {
+      int returned = 0;
+      for (uint64_t id : envelope.goodbye().returned()) {
+        if (worker.leased.erase(id) != 0) {
+          Requeue(id, /*counts_as_attempt=*/false, done);
+          ++returned;
+        }
+      }
+      options_.log(worker.name + " said goodbye (" +
+                   envelope.goodbye().reason() + "), handing back " +
+                   std::to_string(returned));
+      DropWorker(identity, /*died=*/false, done);
+      break;
+    }
+    default:
+      Ignore(std::string("an unexpected ") + protocol::BodyName(envelope) +
+             " from " + worker.name);
+      break;
+  }
+}
+
+void Dispatcher::Greet(const std::string& identity, const v1::Hello& hello) {
+  const std::string name = hello.host() + ":" + std::to_string(hello.pid());
+  std::string refusal;
+  if (hello.protocol_version() != protocol::kVersion) {
+    refusal = "protocol version " + std::to_string(hello.protocol_version()) +
+              " differs from the master's " +
+              std::to_string(protocol::kVersion);
+  } else if (hello.build_id() != protocol::BuildId()) {
+    refusal = "build \"" + hello.build_id() +
+              "\" differs from the master's \"" + protocol::BuildId() +
+              "\" (different builds can give different "
+              "bits)";
+  } else if (hello.null_evaluation() && !options_.accept_null_workers) {
+    refusal = "null-evaluation workers are not accepted by this master";
+  }
+  if (!refusal.empty()) {
+    options_.log("refused worker " + name + ": " + refusal);
+    ++stats_.refused;
+    v1::Envelope envelope;
+    envelope.mutable_refuse()->set_reason(refusal);
+    Send(identity, envelope);
+    return;
+  }
+  if (workers_.count(identity) != 0) {
+    // A second hello on one connection: start the session afresh.
+    DropWorker(identity, /*died=*/false, nullptr);
+  }
+  WorkerState& worker = workers_[identity];
+  worker.name = name;
+  worker.threads = static_cast<int>(std::max<uint32_t>(1, hello.threads()));
+  worker.last_heard = Clock::now();
+  strangers_.erase(identity);
+  v1::Envelope envelope;
+  v1::Welcome* welcome = envelope.mutable_welcome();
+  welcome->set_protocol_version(protocol::kVersion);
+  welcome->set_build_id(protocol::BuildId());
+  *welcome->mutable_config() = config_;
+  welcome->set_config_hash(config_hash_);
+  welcome->set_heartbeat_ms(options_.heartbeat_ms);
+  Send(identity, envelope);
+  options_.log("worker " + name + " joined (" + std::to_string(worker.threads) +
+               " threads)");
+}
+
+void Dispatcher::Collect(const std::string& identity, WorkerState& worker,
+                         const v1::Results& results,
+                         std::vector<Completion>* done) {
+  (void)identity;
+  for (const v1::WorkResult& r : results.results()) {
+    const auto it = pending_.find(r.individual());
+    if (it == pending_.end()) {
+      Ignore("a result for individual " + std::to_string(r.individual()) +
+             " from " + worker.name + " (unknown or already complete)");
+      continue;
+    }
+    Individual& entry = it->second;
+    if (r.genome_hash() != entry.item.genome_hash()) {
+      Ignore("a result for individual " + std::to_string(r.individual()) +
+             " from " + worker.name + " for another genome");
+      continue;
+    }
+    const Status valid = protocol::ValidateResult(r.result());
+    if (!valid.ok()) {
+      Ignore("an invalid result for individual " +
+             std::to_string(r.individual()) + " from " + worker.name + ": " +
+             valid.message());
+      continue;
+    }
+    if (entry.leased) {
+      const auto holder = workers_.find(entry.worker);
+      if (holder != workers_.end()) holder->second.leased.erase(r.individual());
+    } else {
+      queue_.erase(std::find(queue_.begin(), queue_.end(), r.individual()));
+    }
+    Completion completion;
+    completion.individual = r.individual();
+    completion.result = r.result();
+    completion.worker = worker.name;
+    completion.wall_seconds = r.wall_seconds();
+    completion.attempts = entry.attempts;
+    done->push_back(std::move(completion));
+    pending_.erase(it);
+    ++stats_.completed;
+  }
+}
+
+void Dispatcher::Dispatch() {
+  for (auto& [identity, worker] : workers_) {
+    if (queue_.empty()) return;
+    while (worker.credit > 0 && !queue_.empty()) {
+      v1::Envelope envelope;
+      v1::Work* work = envelope.mutable_work();
+      work->set_config_hash(config_hash_);
+      const Clock::time_point deadline =
+          Clock::now() + std::chrono::milliseconds(options_.lease_ms);
+      while (worker.credit > 0 && !queue_.empty() &&
+             work->items_size() < protocol::kMaxBatch) {
+        Individual& entry = pending_.at(queue_.front());
+        // A suspect (its last worker died or its lease expired) goes alone.
+        if (entry.attempts > 0 && work->items_size() > 0) break;
+        queue_.pop_front();
+        *work->add_items() = entry.item;
+        entry.leased = true;
+        entry.worker = identity;
+        entry.deadline = deadline;
+        worker.leased.insert(entry.item.individual());
+        --worker.credit;
+        ++stats_.dispatched;
+        if (entry.attempts > 0) break;
+      }
+      Send(identity, envelope);
+    }
+  }
+}
+
+void Dispatcher::Housekeep(std::vector<Completion>* done) {
+  const Clock::time_point now = Clock::now();
+  const auto silent_limit =
+      std::chrono::milliseconds(protocol::kLiveness * options_.heartbeat_ms);
+  std::vector<std::string> dead;
+  for (auto& [identity, worker] : workers_) {
+    if (now - worker.last_heard > silent_limit) {
+      dead.push_back(identity);
+      continue;
+    }
+    if (now - worker.last_sent >=
+        std::chrono::milliseconds(options_.heartbeat_ms)) {
+      v1::Envelope heartbeat;
+      heartbeat.mutable_heartbeat();
+      Send(identity, heartbeat);
+    }
+  }
+  for (const std::string& identity : dead) {
+    const WorkerState& worker = workers_.at(identity);
+    options_.log("worker " + worker.name + " silent for " +
+                 std::to_string(silent_limit.count()) + " ms; " +
+                 std::to_string(worker.leased.size()) +
+                 " leases back in the queue");
+    DropWorker(identity, /*died=*/true, done);
+  }
+  // Expired leases (their worker may still answer: the first result wins).
+  std::vector<uint64_t> expired;
+  for (const auto& [id, entry] : pending_) {
+    if (entry.leased && now > entry.deadline) expired.push_back(id);
+  }
+  for (uint64_t id : expired) {
+    Individual& entry = pending_.at(id);
+    const auto holder = workers_.find(entry.worker);
+    if (holder != workers_.end()) {
+      holder->second.leased.erase(id);
+      options_.log("lease of individual " + std::to_string(id) + " on " +
+                   holder->second.name + " expired");
+    }
+    Requeue(id, /*counts_as_attempt=*/true, done);
+  }
+}
+
+void Dispatcher::Requeue(uint64_t individual, bool counts_as_attempt,
+                         std::vector<Completion>* done) {
+  Individual& entry = pending_.at(individual);
+  entry.leased = false;
+  entry.worker.clear();
+  ++stats_.requeued;
+  if (counts_as_attempt) ++entry.attempts;
+  if (entry.attempts >= protocol::kMaxAttempts && done != nullptr) {
+    Completion completion;
+    completion.individual = individual;
+    completion.result.set_status(v1::EvaluationResult::NOT_EVALUATED);
+    completion.result.set_reason(
+        "gave up after " + std::to_string(entry.attempts) +
+        " attempts: each time the worker died or the lease expired");
+    completion.attempts = entry.attempts;
+    options_.log("gave up on individual " + std::to_string(individual) +
+                 " after " + std::to_string(entry.attempts) + " attempts");
+    done->push_back(std::move(completion));
+    pending_.erase(individual);
+    ++stats_.gave_up;
+    return;
+  }
+  // Retries go first, so a failure is decided quickly.
+  queue_.push_front(individual);
+}
+
+void Dispatcher::DropWorker(const std::string& identity, bool died,
+                            std::vector<Completion>* done) {
+  const auto it = workers_.find(identity);
+  if (it == workers_.end()) return;
+  const std::set<uint64_t> leased = std::move(it->second.leased);
+  workers_.erase(it);
+  // Highest first, so the queue front ends up in increasing order.
+  for (auto id = leased.rbegin(); id != leased.rend(); ++id) {
+    if (pending_.count(*id) != 0) Requeue(*id, died, done);
+  }
+}
+
+void Dispatcher::Send(const std::string& identity,
+                      const v1::Envelope& envelope) {
+  const std::string bytes = protocol::Encode(envelope);
+  try {
+    socket_->send(zmq::buffer(identity),
+                  zmq::send_flags::sndmore | zmq::send_flags::dontwait);
+    socket_->send(zmq::buffer(bytes), zmq::send_flags::dontwait);
+  } catch (const zmq::error_t& e) {
+    options_.log(std::string("could not send ") + protocol::BodyName(envelope) +
+                 ": " + e.what());
+    return;
+  }
+  const auto it = workers_.find(identity);
+  if (it != workers_.end()) it->second.last_sent = Clock::now();
+}
+
+void Dispatcher::Ignore(const std::string& what) {
+  ++stats_.ignored;
+  options_.log("ignored " + what);
+}
+
+}  // namespace animat

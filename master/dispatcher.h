@@ -1,0 +1,145 @@
+// The master's dispatcher: hands individuals' genomes to workers over a
+// ZeroMQ ROUTER socket and collects their evaluations (docs/protocol.md).
+//
+// Work is leased: a worker silent for kLiveness heartbeat intervals, or a
+// lease older than lease_ms, puts its individuals back in the queue.
+// Results are idempotent by individual: the first valid one counts, late
+// duplicates are ignored. An individual whose evaluation ended without a
+// result kMaxAttempts times (its worker died or its lease expired) is
+// completed as NOT_EVALUATED with the reason; individuals that were on a
+// dying worker are retried alone, so one genome that kills workers does not
+// take others down with it. Malformed input of any kind is logged in one
+// line and survived.
+//
+// Not thread-safe: one thread calls Submit and Poll.
+#ifndef ANIMAT_MASTER_DISPATCHER_H_
+#define ANIMAT_MASTER_DISPATCHER_H_
+
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "animat/v1/protocol.pb.h"
+#include "common/base/log.h"
+#include "common/base/status.h"
+#include "common/evaluation/model_config.h"
+#include "common/protocol/protocol.h"
+
+namespace zmq {
+class context_t;
+class socket_t;
+}  // namespace zmq
+
+namespace animat {
+
+struct DispatcherOptions {
+  std::string endpoint = "tcp://127.0.0.1:5555";  // Where to bind.
+  int heartbeat_ms = protocol::kHeartbeatMs;
+  // A lease not completed in this time goes back to the queue.
+  int lease_ms = 10 * 60 * 1000;
+  // Accept workers in null-evaluation mode (dispatch benchmarks only).
+  bool accept_null_workers = false;
+  LogSink log = Prefixed("dispatcher", StderrSink);
+};
+
+// An individual whose evaluation ended.
+struct Completion {
+  uint64_t individual = 0;
+  v1::EvaluationResult result;
+  std::string worker;       // "host:pid" of the worker that evaluated it.
+  double wall_seconds = 0;  // On the worker.
+  int attempts = 0;         // Dispatches that ended without a result.
+};
+
+struct DispatcherStats {
+  int64_t dispatched = 0;  // Items sent (re-sends counted again).
+  int64_t completed = 0;   // Individuals completed with a result.
+  int64_t gave_up = 0;     // Individuals completed as NOT_EVALUATED.
+  int64_t requeued = 0;    // Leases returned to the queue.
+  int64_t ignored = 0;     // Messages or results ignored (logged).
+  int64_t refused = 0;     // Workers refused.
+};
+
+class Dispatcher {
+ public:
+  // Binds the socket. `context` must outlive the dispatcher.
+  static Result<std::unique_ptr<Dispatcher>> Create(zmq::context_t* context,
+                                                    DispatcherOptions options,
+                                                    const ModelConfig& config);
+  ~Dispatcher();
+
+  // Queues an individual for evaluation; an individual already pending is
+  // left as it is. The genome must be valid.
+  void Submit(uint64_t individual, const v1::Genome& genome);
+
+  // Serves workers for up to `timeout_ms` and returns the completions that
+  // came in, as soon as there are some.
+  std::vector<Completion> Poll(int timeout_ms);
+
+  // Individuals submitted and not completed.
+  size_t pending() const { return pending_.size(); }
+  // Workers currently greeted.
+  size_t workers() const { return workers_.size(); }
+  const DispatcherStats& stats() const { return stats_; }
+  uint64_t config_hash() const { return config_hash_; }
+  // The endpoint actually bound ("tcp://127.0.0.1:41234" for a ":*" port).
+  const std::string& endpoint() const { return endpoint_; }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+
+  struct WorkerState {
+    std::string name;  // host:pid
+    int threads = 1;
+    int credit = 0;
+    Clock::time_point last_heard;
+    Clock::time_point last_sent;
+    std::set<uint64_t> leased;
+  };
+  struct Individual {
+    v1::WorkItem item;
+    int attempts = 0;
+    bool leased = false;
+    std::string worker;  // Identity, when leased.
+    Clock::time_point deadline;
+  };
+
+  Dispatcher(zmq::context_t* context, DispatcherOptions options,
+             v1::Config config);
+
+  void Receive(std::vector<Completion>* done);
+  void Handle(const std::string& identity, const v1::Envelope& envelope,
+              std::vector<Completion>* done);
+  void Greet(const std::string& identity, const v1::Hello& hello);
+  void Collect(const std::string& identity, WorkerState& worker,
+               const v1::Results& results, std::vector<Completion>* done);
+  void Dispatch();
+  void Housekeep(std::vector<Completion>* done);
+  // Back to the queue after a lease ended without a result.
+  void Requeue(uint64_t individual, bool counts_as_attempt,
+               std::vector<Completion>* done);
+  void DropWorker(const std::string& identity, bool died,
+                  std::vector<Completion>* done);
+  void Send(const std::string& identity, const v1::Envelope& envelope);
+  void Ignore(const std::string& what);
+
+  DispatcherOptions options_;
+  std::string endpoint_;
+  v1::Config config_;
+  uint64_t config_hash_;
+  std::unique_ptr<zmq::socket_t> socket_;
+  std::map<uint64_t, Individual> pending_;
+  std::deque<uint64_t> queue_;  // Queued individuals, next first.
+  std::map<std::string, WorkerState> workers_;
+  std::set<std::string> strangers_;  // Unknown identities already logged.
+  DispatcherStats stats_;
+};
+
+}  // namespace animat
+
+#endif  // ANIMAT_MASTER_DISPATCHER_H_

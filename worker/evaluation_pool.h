@@ -1,0 +1,70 @@
+// A pool of threads that evaluate work items (the worker's compute side).
+//
+// The session thread submits items and takes finished results; the pool
+// signals "something finished" on an eventfd the session thread polls
+// together with its socket. Submit, TakeFinished, Abandon and the
+// destructor must be called from one thread (the session's); evaluation
+// happens on the pool's own threads. Evaluations share nothing (a fresh
+// simulation each), so results do not depend on the thread count.
+#ifndef ANIMAT_WORKER_EVALUATION_POOL_H_
+#define ANIMAT_WORKER_EVALUATION_POOL_H_
+
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "animat/v1/protocol.pb.h"
+#include "common/evaluation/model_config.h"
+
+namespace animat {
+
+class EvaluationPool {
+ public:
+  // `threads` >= 1. With `null_evaluation` nothing is simulated: every item
+  // finishes at once as NOT_EVALUATED (dispatch benchmarks).
+  EvaluationPool(int threads, ModelConfig config, bool null_evaluation);
+  // Finishes the evaluations under way, drops queued ones, joins.
+  ~EvaluationPool();
+  EvaluationPool(const EvaluationPool&) = delete;
+  EvaluationPool& operator=(const EvaluationPool&) = delete;
+
+  // Queues an item. Its genome is validated on the pool thread; an invalid
+  // one finishes as INVALID_GENOME with the reason.
+  void Submit(v1::WorkItem item);
+
+  // Results finished since the last call, in finishing order.
+  std::vector<v1::WorkResult> TakeFinished();
+
+  // Removes the queued items no thread has started and returns their
+  // individuals (handed back on shutdown or a new session).
+  std::vector<uint64_t> Abandon();
+
+  // Items queued or being evaluated.
+  int in_flight() const;
+
+  // Readable (a counter) whenever results are waiting; TakeFinished resets
+  // it. For zmq_poll.
+  int wakeup_fd() const { return wakeup_fd_; }
+
+ private:
+  void Loop();
+  void Finish(v1::WorkResult result, bool was_running);
+
+  const ModelConfig config_;
+  const bool null_evaluation_;
+  int wakeup_fd_ = -1;
+  mutable std::mutex mutex_;
+  std::condition_variable ready_;
+  std::deque<v1::WorkItem> queue_;
+  std::vector<v1::WorkResult> finished_;
+  int running_ = 0;
+  bool stopping_ = false;
+  std::vector<std::thread> threads_;
+};
+
+}  // namespace animat
+
+#endif  // ANIMAT_WORKER_EVALUATION_POOL_H_

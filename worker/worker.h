@@ -1,0 +1,73 @@
+// An evaluation worker: connects to a master, says hello, receives the
+// configuration and work, evaluates with a pool of threads, returns
+// results, and keeps going across master restarts (docs/protocol.md).
+//
+// Stateless: everything it knows comes from the current session. Run()
+// and the constructor belong to one thread; Stop() may be called from any
+// thread or a signal handler.
+#ifndef ANIMAT_WORKER_WORKER_H_
+#define ANIMAT_WORKER_WORKER_H_
+
+#include <atomic>
+#include <memory>
+#include <string>
+
+#include "common/base/log.h"
+
+namespace zmq {
+class context_t;
+class socket_t;
+}  // namespace zmq
+
+namespace animat {
+
+class EvaluationPool;
+
+struct WorkerOptions {
+  std::string endpoint;  // The master's, e.g. "tcp://127.0.0.1:5555".
+  int threads = 1;       // Evaluations at once (>= 1).
+  // Simulate nothing and answer every item at once (dispatch benchmarks);
+  // the master must accept such workers explicitly.
+  bool null_evaluation = false;
+  // Heartbeat interval until the master's Welcome sets its own.
+  int heartbeat_ms = 1000;
+  // Reconnection backoff after the master falls silent: doubles from min
+  // to max.
+  int reconnect_min_ms = 100;
+  int reconnect_max_ms = 5000;
+  LogSink log = Prefixed("worker", StderrSink);
+};
+
+class Worker {
+ public:
+  // Exit codes of Run().
+  static constexpr int kExitStopped = 0;  // Stop() was called.
+  static constexpr int kExitRefused = 3;  // The master refused us.
+
+  explicit Worker(WorkerOptions options);
+  ~Worker();
+
+  // Serves masters until Stop() or a refusal.
+  int Run();
+
+  // Asks Run() to hand back the work it has not started, finish the
+  // evaluations under way, send their results and a goodbye, and return.
+  // Async-signal-safe.
+  void Stop() { stop_.store(true, std::memory_order_relaxed); }
+
+ private:
+  enum class SessionEnd { kStopped, kRefused, kLost };
+  SessionEnd RunSession(zmq::context_t& context);
+
+  WorkerOptions options_;
+  std::string host_;
+  std::atomic<bool> stop_{false};
+  // Survives sessions, so evaluations under way when a master vanished
+  // finish and are offered to the next one.
+  std::unique_ptr<EvaluationPool> pool_;
+  uint64_t pool_config_hash_ = 0;
+};
+
+}  // namespace animat
+
+#endif  // ANIMAT_WORKER_WORKER_H_
