@@ -1,0 +1,60 @@
+// The configurations the report compares: the reference and the
+// candidates, each a set of fields over the default configuration.
+//
+// A configuration is written as proto text (what a user would put in a
+// config file) and read by the project's own config reader, so an option
+// the reader rejects or ignores shows up as a load error, not as a silently
+// wrong measurement.
+#ifndef ANIMAT_BENCH_ACCURACY_CANDIDATES_H_
+#define ANIMAT_BENCH_ACCURACY_CANDIDATES_H_
+
+#include <string>
+#include <vector>
+
+#include "common/base/status.h"
+#include "common/evaluation/model_config.h"
+
+namespace animat::accuracy {
+
+struct Candidate {
+  // Proto enum value names (animat.v1.PhysicsConfig, GrnConfig).
+  std::string integrator;  // "SEMI_IMPLICIT_EULER", "VELOCITY_VERLET", "RK4".
+  int substeps = 1;
+  std::string drag_update;  // "EXPLICIT", "STABLE".
+  std::string precision;    // "DOUBLE", "FLOAT".
+  std::string backend;      // "NATIVE", "BULLET".
+
+  // Compact label for plots: integrator letter (E semi-implicit Euler,
+  // V velocity Verlet, R RK4, B Bullet), sub-steps, "s" for the stable drag
+  // update, "f" for float network arithmetic: "E1", "R4s", "B2f".
+  std::string Label() const;
+  // Readable name: "euler ×1, explicit, double" ("bullet euler ×2, ...").
+  std::string Name() const;
+  // The group a plot colours it by: "semi-implicit Euler", "velocity
+  // Verlet", "RK4", "Bullet".
+  std::string Group() const;
+  // The fields it sets over the defaults, as proto text of animat.v1.Config.
+  // Precision is written only when FLOAT (DOUBLE is the default).
+  std::string ConfigText() const;
+};
+
+// RK4, 16 sub-steps, explicit drag, double, native.
+Candidate ReferenceCandidate();
+// The default configuration: semi-implicit Euler, 1 sub-step, explicit
+// drag, double, native.
+Candidate DefaultCandidate();
+
+// Every native integrator x sub-steps {1, 2, 4} x drag update {explicit,
+// stable} x precision {double, float}, then the Bullet backend
+// (semi-implicit Euler, 1 and 2 sub-steps, explicit drag, both precisions).
+std::vector<Candidate> CandidateSet();
+
+// The configuration of `candidate`: the defaults with ConfigText() read by
+// ConfigFromProto. Fails with the reader's message if it rejects the text,
+// or if a requested field does not survive the round trip to the model's
+// structs and back (ConfigToProto): the option is not implemented.
+Result<ModelConfig> CandidateConfig(const Candidate& candidate);
+
+}  // namespace animat::accuracy
+
+#endif  // ANIMAT_BENCH_ACCURACY_CANDIDATES_H_

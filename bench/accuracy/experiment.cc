@@ -1,0 +1,338 @@
+#include "bench/accuracy/experiment.h"
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <thread>
+
+#include "bench/accuracy/animat_set.h"
+#include "bench/accuracy/runner.h"
+#include "bench/accuracy/stats.h"
+
+namespace animat::accuracy {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+std::string FirstLineWith(const std::string& path, const std::string& key) {
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind(key, 0) == 0) return line;
+  }
+  return "";
+}
+
+std::string LoadAverage() {
+  std::ifstream in("/proc/loadavg");
+  double one = 0.0;
+  if (!(in >> one)) return "?";
+  std::ostringstream out;
+  out << one;
+  return out.str();
+}
+
+std::string CpuModel() {
+  std::string line = FirstLineWith("/proc/cpuinfo", "model name");
+  const size_t colon = line.find(':');
+  if (colon == std::string::npos) return "unknown CPU";
+  return line.substr(colon + 2);
+}
+
+// The same configuration with physics.dt one ulp larger.
+ModelConfig NudgeDt(ModelConfig config) {
+  config.physics.dt = std::nextafter(config.physics.dt, kInfinity);
+  return config;
+}
+
+ChaosResult Chaos(const std::string& name, const std::vector<Run>& base,
+                  const std::vector<Run>& nudged,
+                  const std::vector<Run>& reference) {
+  ChaosResult chaos;
+  chaos.config = name;
+  chaos.animats = static_cast<int>(base.size());
+  std::vector<double> fitness;
+  for (size_t a = 0; a < base.size(); ++a) {
+    if (!base[a].ok() || !nudged[a].ok()) {
+      ++chaos.failures;
+      fitness.push_back(kInfinity);
+      continue;
+    }
+    fitness.push_back(std::abs(base[a].fitness - nudged[a].fitness) /
+                      reference[a].fitness);
+  }
+  chaos.fitness_median = Median(fitness);
+  chaos.fitness_p90 = Percentile90(fitness);
+  chaos.fitness_max = Quantile(fitness, 1.0);
+  for (int step : kChaosSteps) {
+    std::vector<double> divergence;
+    for (size_t a = 0; a < base.size(); ++a) {
+      divergence.push_back(
+          Divergence(base[a], nudged[a], step, reference[a].fitness));
+    }
+    chaos.steps.push_back(step);
+    chaos.median.push_back(Median(divergence));
+    chaos.p90.push_back(Percentile90(divergence));
+    chaos.max.push_back(Quantile(divergence, 1.0));
+  }
+  return chaos;
+}
+
+// The candidate that differs from `c` in one option only: native for a
+// Bullet candidate (same precision), double for a native float one; or -1.
+int Counterpart(const std::vector<CandidateResult>& all, const Candidate& c) {
+  if (c.backend != "BULLET" && c.precision != "FLOAT") return -1;
+  for (size_t i = 0; i < all.size(); ++i) {
+    const Candidate& o = all[i].candidate;
+    const bool other_options =
+        c.backend == "BULLET"
+            ? o.backend == "NATIVE" && o.precision == c.precision
+            : o.backend == c.backend && o.precision == "DOUBLE";
+    if (other_options && o.integrator == c.integrator &&
+        o.substeps == c.substeps && o.drag_update == c.drag_update) {
+      return static_cast<int>(i);
+    }
+  }
+  return -1;
+}
+
+void Summarise(CandidateResult* result) {
+  std::vector<double> fitness, trajectory, ms_ok, ms_all, cpu_ok, cpu_all;
+  result->failures = 0;
+  for (const AnimatResult& a : result->animats) {
+    fitness.push_back(a.fitness_error);
+    trajectory.push_back(a.trajectory_error);
+    ms_all.push_back(a.ms);
+    cpu_all.push_back(a.cpu_ms);
+    if (a.status == "ok") {
+      ms_ok.push_back(a.ms);
+      cpu_ok.push_back(a.cpu_ms);
+    } else {
+      ++result->failures;
+    }
+  }
+  if (result->animats.empty()) return;
+  result->fitness_error_median = Median(fitness);
+  result->fitness_error_p90 = Percentile90(fitness);
+  result->trajectory_error_median = Median(trajectory);
+  result->trajectory_error_p90 = Percentile90(trajectory);
+  result->ms_median = Median(ms_ok.empty() ? ms_all : ms_ok);
+  result->cpu_ms_median = Median(cpu_ok.empty() ? cpu_all : cpu_ok);
+}
+
+}  // namespace
+
+Result<Report> RunExperiment(const ExperimentOptions& options) {
+  const auto clock_start = std::chrono::steady_clock::now();
+  auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                         clock_start)
+        .count();
+  };
+  auto say = [&](const std::string& line) {
+    if (options.progress) *options.progress << line << std::endl;
+  };
+
+  Result<std::vector<Animat>> loaded = LoadAnimatSet(options.data_dir);
+  if (!loaded.ok()) return loaded.status();
+  std::vector<Animat> animats = *loaded;
+  if (options.max_animats > 0 &&
+      static_cast<int>(animats.size()) > options.max_animats) {
+    animats.resize(options.max_animats);
+  }
+  Result<ModelConfig> reference_config = CandidateConfig(ReferenceCandidate());
+  if (!reference_config.ok()) {
+    return reference_config.status().WithPrefix("reference configuration");
+  }
+  Result<ModelConfig> default_config = CandidateConfig(DefaultCandidate());
+  if (!default_config.ok()) {
+    return default_config.status().WithPrefix("default configuration");
+  }
+
+  Report report;
+  report.quick = options.quick;
+  report.repeats = std::max(1, options.repeats);
+  report.machine =
+      CpuModel() + ", " + std::to_string(std::thread::hardware_concurrency()) +
+      " logical CPUs, load average " + LoadAverage() + " at the start";
+
+  // The reference; an animat whose reference fails is left out.
+  std::vector<Run> reference;
+  std::vector<double> reference_ms;
+  {
+    std::vector<Animat> kept;
+    for (const Animat& animat : animats) {
+      Run run = RunEvaluation(animat.genome, *reference_config);
+      if (!run.ok() || !(run.fitness > 0.0)) {
+        report.excluded.push_back(animat.name + " (reference: " +
+                                  std::string(EvalStatusName(run.status)) +
+                                  " " + run.reason + ")");
+        continue;
+      }
+      reference_ms.push_back(run.seconds * 1e3);
+      report.animats.push_back(animat.name);
+      report.reference_fitness.push_back(run.fitness);
+      reference.push_back(std::move(run));
+      kept.push_back(animat);
+    }
+    animats = std::move(kept);
+  }
+  if (animats.empty()) {
+    return Status::Internal("the reference failed on every animat");
+  }
+  report.reference_ms_median = Median(reference_ms);
+  say(std::string("reference: ") + std::to_string(animats.size()) +
+      " animats, " + std::to_string(elapsed()) + " s");
+
+  // Chaos: one ulp of dt.
+  {
+    std::vector<Run> base, nudged, reference_nudged;
+    const ModelConfig default_nudged = NudgeDt(*default_config);
+    const ModelConfig ref_nudged = NudgeDt(*reference_config);
+    for (const Animat& animat : animats) {
+      base.push_back(RunEvaluation(animat.genome, *default_config));
+      nudged.push_back(RunEvaluation(animat.genome, default_nudged));
+      if (!options.quick) {
+        reference_nudged.push_back(RunEvaluation(animat.genome, ref_nudged));
+      }
+    }
+    report.chaos.push_back(
+        Chaos(std::string("default (") + DefaultCandidate().Label() + ")", base,
+              nudged, reference));
+    if (!options.quick) {
+      report.chaos.push_back(
+          Chaos("reference (R16)", reference, reference_nudged, reference));
+    }
+    say(std::string("chaos: ") + std::to_string(elapsed()) + " s");
+  }
+
+  // Candidates.
+  std::vector<CandidateResult> results;
+  std::vector<ModelConfig> configs;
+  std::vector<int> loaded_index;  // Into results.
+  for (const Candidate& candidate : CandidateSet()) {
+    CandidateResult result;
+    result.candidate = candidate;
+    Result<ModelConfig> config = CandidateConfig(candidate);
+    if (config.ok()) {
+      loaded_index.push_back(static_cast<int>(results.size()));
+      configs.push_back(*config);
+    } else {
+      result.error = config.status().message();
+    }
+    results.push_back(std::move(result));
+  }
+
+  // runs[c][a]: the first repetition; seconds[c][a]: every repetition.
+  const size_t n = loaded_index.size();
+  std::vector<std::vector<Run>> runs(n, std::vector<Run>(animats.size()));
+  std::vector<std::vector<std::vector<double>>> seconds(
+      n, std::vector<std::vector<double>>(animats.size()));
+  std::vector<std::vector<std::vector<double>>> cpu_seconds = seconds;
+  std::vector<std::vector<bool>> deterministic(
+      n, std::vector<bool>(animats.size(), true));
+  for (int rep = 0; rep < report.repeats; ++rep) {
+    for (size_t a = 0; a < animats.size(); ++a) {
+      for (size_t c = 0; c < n; ++c) {
+        Run run = RunEvaluation(animats[a].genome, configs[c]);
+        seconds[c][a].push_back(run.seconds);
+        cpu_seconds[c][a].push_back(run.cpu_seconds);
+        if (rep == 0) {
+          runs[c][a] = std::move(run);
+        } else if (!run.SameBits(runs[c][a])) {
+          deterministic[c][a] = false;
+        }
+      }
+    }
+    say(std::string("repetition ") + std::to_string(rep + 1) + "/" +
+        std::to_string(report.repeats) + ": " + std::to_string(elapsed()) +
+        " s");
+  }
+
+  for (size_t c = 0; c < n; ++c) {
+    CandidateResult& result = results[loaded_index[c]];
+    for (size_t a = 0; a < animats.size(); ++a) {
+      const Run& run = runs[c][a];
+      AnimatResult row;
+      row.animat = animats[a].name;
+      row.status = EvalStatusName(run.status);
+      row.reason = run.reason;
+      row.fitness = run.fitness;
+      row.reference_fitness = reference[a].fitness;
+      row.fitness_error = FitnessError(run, reference[a]);
+      row.trajectory_error = TrajectoryError(run, reference[a]);
+      row.ms = Median(seconds[c][a]) * 1e3;
+      row.cpu_ms = Median(cpu_seconds[c][a]) * 1e3;
+      row.state_hash = run.state_hash;
+      row.deterministic = deterministic[c][a];
+      result.animats.push_back(std::move(row));
+    }
+    Summarise(&result);
+    for (size_t a = 0; a < animats.size(); ++a) {
+      for (size_t b = a + 1; b < animats.size(); ++b) {
+        if (!runs[c][a].ok() || !runs[c][b].ok()) continue;
+        ++result.order_pairs;
+        const bool ref_less = reference[a].fitness < reference[b].fitness;
+        const bool ref_more = reference[a].fitness > reference[b].fitness;
+        const bool less = runs[c][a].fitness < runs[c][b].fitness;
+        const bool more = runs[c][a].fitness > runs[c][b].fitness;
+        if ((ref_less && more) || (ref_more && less)) ++result.order_swaps;
+      }
+    }
+  }
+
+  // The effect of the float or Bullet option alone, against the candidate
+  // without it. Float arithmetic that changes no bit is not in effect; the
+  // Bullet backend may legitimately give the same bits as native
+  // semi-implicit Euler (it performs the same operations).
+  for (size_t c = 0; c < n; ++c) {
+    CandidateResult& result = results[loaded_index[c]];
+    const int other = Counterpart(results, result.candidate);
+    if (other < 0 || results[other].animats.empty()) continue;
+    size_t other_c = 0;
+    while (loaded_index[other_c] != other) ++other_c;
+    const std::vector<Run>& mine = runs[c];
+    const std::vector<Run>& theirs = runs[other_c];
+    bool identical = true;
+    std::vector<double> difference;
+    for (size_t a = 0; a < animats.size(); ++a) {
+      identical = identical && mine[a].SameBits(theirs[a]);
+      difference.push_back(mine[a].ok() && theirs[a].ok()
+                               ? std::abs(mine[a].fitness - theirs[a].fitness) /
+                                     reference[a].fitness
+                               : kInfinity);
+    }
+    const std::string label = results[other].candidate.Label();
+    result.counterpart = label;
+    result.counterpart_median = Median(difference);
+    result.counterpart_p90 = Percentile90(difference);
+    result.counterpart_max = Quantile(difference, 1.0);
+    if (!identical) continue;
+    if (result.candidate.backend != "BULLET") {
+      result.error = "no effect: bit-identical to " + label +
+                     " on every animat (float arithmetic not in effect in "
+                     "this build)";
+    } else {
+      result.note = "bit-identical to " + label + " on every animat";
+    }
+  }
+
+  // The Pareto front of median time against median fitness error.
+  std::vector<CostError> points;
+  std::vector<int> point_owner;
+  for (size_t i = 0; i < results.size(); ++i) {
+    if (!results[i].Eligible()) continue;
+    points.push_back({results[i].ms_median, results[i].fitness_error_median});
+    point_owner.push_back(static_cast<int>(i));
+  }
+  for (int p : ParetoFront(points)) results[point_owner[p]].on_front = true;
+
+  report.candidates = std::move(results);
+  report.machine += std::string(", ") + LoadAverage() + " at the end";
+  report.total_seconds = elapsed();
+  return report;
+}
+
+}  // namespace animat::accuracy

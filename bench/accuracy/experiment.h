@@ -1,0 +1,38 @@
+// Runs the whole measurement: the reference and every candidate on every
+// animat, repeated for timing, and the one-ulp chaos runs.
+#ifndef ANIMAT_BENCH_ACCURACY_EXPERIMENT_H_
+#define ANIMAT_BENCH_ACCURACY_EXPERIMENT_H_
+
+#include <ostream>
+#include <string>
+
+#include "bench/accuracy/results.h"
+#include "common/base/status.h"
+
+namespace animat::accuracy {
+
+struct ExperimentOptions {
+  std::string data_dir;  // Genome files (LoadAnimatSet).
+  // At most this many animats (the first by name); 0 for all.
+  int max_animats = 0;
+  // Timed repetitions of the whole candidate set (at least 1). Errors come
+  // from the first; the others must give the same bits.
+  int repeats = 3;
+  bool quick = false;  // Recorded in the report; also skips the reference
+                       // configuration's chaos run.
+  std::ostream* progress = nullptr;  // Progress lines, or null.
+};
+
+// The chaos measurement's motion steps.
+inline constexpr int kChaosSteps[] = {500, 1000, 2000, 4000, 6000};
+
+// Runs everything single-threaded (so that timings are not disturbed by a
+// second evaluation on the other core). Interleaves the candidates within
+// each repetition so that a change of machine load affects them alike.
+// Fails only if the animat set or the reference configuration cannot be
+// loaded; a candidate that fails is a row with its error.
+Result<Report> RunExperiment(const ExperimentOptions& options);
+
+}  // namespace animat::accuracy
+
+#endif  // ANIMAT_BENCH_ACCURACY_EXPERIMENT_H_

@@ -1,0 +1,301 @@
+#include "bench/accuracy/report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "bench/accuracy/svg_plot.h"
+
+namespace animat::accuracy {
+namespace {
+
+std::string Format(const char* format, double v) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, v);
+  return buffer;
+}
+
+// CSV numbers: round-trip precision, "inf" for failures.
+std::string CsvNumber(double v) {
+  if (std::isinf(v)) return "inf";
+  if (std::isnan(v)) return "";
+  return Format("%.17g", v);
+}
+
+// Markdown errors: two significant digits.
+std::string Error(double v) {
+  if (std::isinf(v)) return "fail";
+  if (std::isnan(v)) return "—";
+  if (v == 0.0) return "0";
+  return Format("%.1e", v);
+}
+
+std::string Ms(double v) {
+  if (!std::isfinite(v)) return "—";
+  return Format(v < 10 ? "%.2f" : "%.1f", v);
+}
+
+std::string Hex(uint64_t v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%016llx",
+                static_cast<unsigned long long>(v));
+  return buffer;
+}
+
+int NonDeterministic(const CandidateResult& c) {
+  int count = 0;
+  for (const AnimatResult& a : c.animats) count += a.deterministic ? 0 : 1;
+  return count;
+}
+
+bool Measured(const CandidateResult& c) { return !c.animats.empty(); }
+
+}  // namespace
+
+std::string CsvField(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+std::string AccuracyCsv(const Report& report) {
+  std::string csv =
+      "candidate,integrator,substeps,drag_update,precision,backend,animat,"
+      "status,reason,fitness,reference_fitness,fitness_error,"
+      "trajectory_error,ms_per_evaluation,cpu_ms_per_evaluation,state_hash,"
+      "deterministic\n";
+  for (const CandidateResult& c : report.candidates) {
+    const Candidate& k = c.candidate;
+    const std::string prefix =
+        k.Label() + "," + k.integrator + "," + std::to_string(k.substeps) +
+        "," + k.drag_update + "," + k.precision + "," + k.backend + ",";
+    if (!Measured(c)) {
+      csv += prefix + ",not_loaded," + CsvField(c.error) + ",,,,,,,,\n";
+      continue;
+    }
+    for (const AnimatResult& a : c.animats) {
+      const bool ok = a.status == "ok";
+      csv += prefix + a.animat + "," + a.status + "," + CsvField(a.reason) +
+             "," + (ok ? CsvNumber(a.fitness) : "") + "," +
+             CsvNumber(a.reference_fitness) + "," + CsvNumber(a.fitness_error) +
+             "," + CsvNumber(a.trajectory_error) + "," + Format("%.3f", a.ms) +
+             "," + Format("%.3f", a.cpu_ms) + "," +
+             (ok ? Hex(a.state_hash) : "") + "," +
+             (a.deterministic ? "true" : "false") + "\n";
+    }
+  }
+  return csv;
+}
+
+std::string SummaryCsv(const Report& report) {
+  std::string csv =
+      "candidate,name,integrator,substeps,drag_update,precision,backend,"
+      "animats,failures,fitness_error_median,fitness_error_p90,"
+      "trajectory_error_median,trajectory_error_p90,ms_per_evaluation_median,"
+      "cpu_ms_per_evaluation_median,pareto_front,order_swaps,order_pairs,"
+      "error,note,counterpart,counterpart_difference_median,"
+      "counterpart_difference_p90\n";
+  for (const CandidateResult& c : report.candidates) {
+    const Candidate& k = c.candidate;
+    csv += k.Label() + "," + CsvField(k.Name()) + "," + k.integrator + "," +
+           std::to_string(k.substeps) + "," + k.drag_update + "," +
+           k.precision + "," + k.backend + ",";
+    if (!Measured(c)) {
+      csv += std::string(",,,,,,,,false,,,") + CsvField(c.error) + ",,,,\n";
+      continue;
+    }
+    csv +=
+        std::to_string(c.animats.size()) + "," + std::to_string(c.failures) +
+        "," + CsvNumber(c.fitness_error_median) + "," +
+        CsvNumber(c.fitness_error_p90) + "," +
+        CsvNumber(c.trajectory_error_median) + "," +
+        CsvNumber(c.trajectory_error_p90) + "," + Format("%.3f", c.ms_median) +
+        "," + Format("%.3f", c.cpu_ms_median) + "," +
+        (c.on_front ? "true" : "false") + "," + std::to_string(c.order_swaps) +
+        "," + std::to_string(c.order_pairs) + "," + CsvField(c.error) + "," +
+        CsvField(c.note) + "," + c.counterpart + "," +
+        (c.counterpart.empty() ? "" : CsvNumber(c.counterpart_median)) + "," +
+        (c.counterpart.empty() ? "" : CsvNumber(c.counterpart_p90)) + "\n";
+  }
+  return csv;
+}
+
+std::string SummaryMarkdown(const Report& report) {
+  std::string md;
+  md += "### Speed against error\n\n";
+  md +=
+      "Reference: RK4, 16 sub-steps (h = dt/16), explicit drag, double, "
+      "native backend; " +
+      Ms(report.reference_ms_median) + " ms per evaluation (median). ";
+  md += std::to_string(report.animats.size()) +
+        " animats (random genomes; evolved animats are not in the set yet: "
+        "the genetic algorithm is a later issue). ";
+  md += std::string("Times: median of ") + std::to_string(report.repeats) +
+        " repetition(s) per evaluation, then the median over the animats; " +
+        report.machine + ". The whole run took " +
+        Format("%.0f", report.total_seconds) + " s" +
+        (report.quick ? " (--quick: a smaller run, not the report's figures)"
+                      : "") +
+        ".\n\n";
+  if (!report.excluded.empty()) {
+    md += "Left out (reference failed):";
+    for (const std::string& e : report.excluded) md += " " + e + ";";
+    md += "\n\n";
+  }
+
+  md +=
+      "| | candidate | fitness error median | p90 | trajectory error "
+      "median | p90 | order swaps | ms / eval | CPU ms | failures | front "
+      "|\n";
+  md += "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
+  std::vector<std::string> notes;
+  for (const CandidateResult& c : report.candidates) {
+    const Candidate& k = c.candidate;
+    std::string mark;
+    std::string note = c.error;
+    if (!c.note.empty()) note += (note.empty() ? "" : "; ") + c.note;
+    const int nd = NonDeterministic(c);
+    if (nd > 0) {
+      note += (note.empty() ? "" : "; ") + std::string("not bit-identical ") +
+              "between repetitions on " + std::to_string(nd) + " animats";
+    }
+    if (!note.empty()) {
+      notes.push_back(note);
+      mark = std::string(" [") + std::to_string(notes.size()) + "]";
+    }
+    md += "| `" + k.Label() + "` | " + k.Name() + mark + " | ";
+    if (!Measured(c)) {
+      md += "— | — | — | — | — | — | — | not run | |\n";
+      continue;
+    }
+    const std::string bold = c.on_front ? "**" : "";
+    md += bold + Error(c.fitness_error_median) + bold + " | " +
+          Error(c.fitness_error_p90) + " | " +
+          Error(c.trajectory_error_median) + " | " +
+          Error(c.trajectory_error_p90) + " | " +
+          std::to_string(c.order_swaps) + "/" + std::to_string(c.order_pairs) +
+          " | " + bold + Ms(c.ms_median) + bold + " | " + Ms(c.cpu_ms_median) +
+          " | " + std::to_string(c.failures) + " | " +
+          (c.on_front ? "**yes**" : "") + " |\n";
+  }
+  md += "\n";
+  md +=
+      "Errors are relative to the reference fitness f_ref of each animat: "
+      "fitness error |f − f_ref| / f_ref; trajectory error max over the "
+      "motion steps 0, 50, …, 6000 of |d(t) − d_ref(t)| / f_ref, d being "
+      "the centre of mass's displacement since the start of motion. Order "
+      "swaps: pairs of animats this candidate ranks in the opposite order "
+      "from the reference (what selection would see). A "
+      "failed evaluation counts as an infinite error (\"fail\"). The front: "
+      "no other candidate without failures is both faster and more "
+      "accurate (median time, median fitness error); candidates with a "
+      "failure, or not run, or whose option had no effect are not "
+      "eligible.\n";
+  if (!notes.empty()) {
+    md += "\n";
+    for (size_t i = 0; i < notes.size(); ++i) {
+      md += std::to_string(i + 1) + ". " + notes[i] + "\n";
+    }
+  }
+
+  md += "\n### The option alone: float arithmetic, Bullet\n\n";
+  md +=
+      "|f − f_c| / f_ref over the animats, f_c from the candidate that "
+      "differs only in that option: the native backend for a Bullet "
+      "candidate, double precision for a native float one.\n\n";
+  md +=
+      "| candidate | against | median | p90 | max "
+      "|\n|---|---|---:|---:|---:|\n";
+  for (const CandidateResult& c : report.candidates) {
+    if (c.counterpart.empty()) continue;
+    md += "| `" + c.candidate.Label() + "` | `" + c.counterpart + "` | " +
+          Error(c.counterpart_median) + " | " + Error(c.counterpart_p90) +
+          " | " + Error(c.counterpart_max) + " |\n";
+  }
+
+  md += "\n### Chaos: runs that differ by one ulp of dt\n\n";
+  md +=
+      "Each animat run twice, the second with physics.dt one ulp larger "
+      "(std::nextafter). Divergence |d(t) − d′(t)| / f_ref at motion step "
+      "t, median (90th percentile) over the animats; last column the "
+      "fitness difference |f − f′| / f_ref.\n\n";
+  if (!report.chaos.empty()) {
+    md += "| configuration |";
+    for (int step : report.chaos[0].steps) {
+      md += std::string(" t = ") + std::to_string(step) + " |";
+    }
+    md += " fitness |\n|---|";
+    for (size_t i = 0; i < report.chaos[0].steps.size(); ++i) md += "---:|";
+    md += "---:|\n";
+    for (const ChaosResult& chaos : report.chaos) {
+      md += "| " + chaos.config + " |";
+      for (size_t i = 0; i < chaos.steps.size(); ++i) {
+        md += ' ';
+        md += Error(chaos.median[i]);
+        md += " (";
+        md += Error(chaos.p90[i]);
+        md += ") |";
+      }
+      md += std::string(" ") + Error(chaos.fitness_median) + " (" +
+            Error(chaos.fitness_p90) + ") |\n";
+    }
+    md += "\nLargest over the animats:";
+    for (const ChaosResult& chaos : report.chaos) {
+      md += " " + chaos.config + " " + Error(chaos.max.back()) +
+            " at t = " + std::to_string(chaos.steps.back()) + ", fitness " +
+            Error(chaos.fitness_max) + ";";
+    }
+    md += "\n";
+  }
+
+  md += "\nAnimats (f_ref):";
+  for (size_t i = 0; i < report.animats.size(); ++i) {
+    md += std::string(i ? "," : "") + " " + report.animats[i] + " (" +
+          Format("%.3g", report.reference_fitness[i]) + ")";
+  }
+  md += ".\n";
+  return md;
+}
+
+std::string ReportSvg(const Report& report) {
+  std::vector<PlotPoint> points;
+  int left_out = 0;
+  for (const CandidateResult& c : report.candidates) {
+    if (!Measured(c) || !c.error.empty() ||
+        !std::isfinite(c.fitness_error_median) ||
+        !(c.fitness_error_median > 0.0)) {
+      ++left_out;
+      continue;
+    }
+    points.push_back({c.candidate.Label(), c.candidate.Group(), c.ms_median,
+                      c.fitness_error_median, c.on_front});
+  }
+  PlotOptions options;
+  options.title = std::string("Speed against error: ") +
+                  std::to_string(report.animats.size()) +
+                  " animats, reference RK4 ×16";
+  options.x_label = "median wall time per evaluation (ms, log scale)";
+  options.y_label = "median relative fitness error (log scale)";
+  options.note = std::to_string(points.size()) + " candidates plotted" +
+                 (left_out ? "; " + std::to_string(left_out) +
+                                 " not plotted (not run, no effect, or median "
+                                 "error infinite: see summary.md)"
+                           : "") +
+                 ".";
+  options.legend_notes = {"Labels: integrator E = semi-implicit",
+                          "Euler, V = velocity Verlet, R = RK4,",
+                          "B = Bullet (semi-implicit Euler);",
+                          "number = sub-steps per step;",
+                          "s = stable drag update;",
+                          "f = float network arithmetic.",
+                          "Front: no other candidate without",
+                          "failures is both faster and more",
+                          "accurate."};
+  return PlotSvg(points, options);
+}
+
+}  // namespace animat::accuracy

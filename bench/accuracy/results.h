@@ -1,0 +1,95 @@
+// What the accuracy report measured, as plain values for the writers
+// (report.h) and the plot (svg_plot.h).
+#ifndef ANIMAT_BENCH_ACCURACY_RESULTS_H_
+#define ANIMAT_BENCH_ACCURACY_RESULTS_H_
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "bench/accuracy/candidates.h"
+
+namespace animat::accuracy {
+
+// One candidate on one animat. Errors are +infinity for a failed
+// evaluation.
+struct AnimatResult {
+  std::string animat;
+  std::string status;  // EvalStatusName.
+  std::string reason;
+  double fitness = 0.0;  // Meaningful when status is "ok".
+  double reference_fitness = 0.0;
+  double fitness_error = 0.0;     // |f - f_ref| / f_ref.
+  double trajectory_error = 0.0;  // max_t |d(t) - d_ref(t)| / f_ref.
+  double ms = 0.0;                // Median wall time over the repetitions.
+  double cpu_ms = 0.0;            // Median CPU time of the evaluating thread.
+  uint64_t state_hash = 0;
+  bool deterministic = true;  // Every repetition gave the same bits.
+};
+
+struct CandidateResult {
+  Candidate candidate;
+  // Why it was not measured (the config reader's message), or why its
+  // numbers are not a measurement of what it names ("no effect: ..."); empty
+  // when it was measured.
+  std::string error;
+  std::vector<AnimatResult> animats;  // Empty when it could not be loaded.
+  // Remarks that do not disqualify it ("bit-identical to E1 ...").
+  std::string note;
+
+  // For a float or Bullet candidate: the candidate that differs only in
+  // that option (double, native), and |f - f_counterpart| / f_ref over the
+  // animats (+infinity where either failed).
+  std::string counterpart;
+  double counterpart_median = 0.0, counterpart_p90 = 0.0, counterpart_max = 0.0;
+
+  // Over the animats; failures count as +infinity.
+  int failures = 0;
+  double fitness_error_median = 0.0;
+  double fitness_error_p90 = 0.0;
+  double trajectory_error_median = 0.0;
+  double trajectory_error_p90 = 0.0;
+  double ms_median = 0.0;      // Over the animats' successful evaluations.
+  double cpu_ms_median = 0.0;  // Likewise, CPU time.
+  bool on_front = false;
+  // Pairs of animats (both evaluated ok) that this candidate ranks in the
+  // opposite order from the reference, out of `order_pairs`: what selection
+  // would see.
+  int order_swaps = 0;
+  int order_pairs = 0;
+
+  // Measured, every evaluation ok, options in effect: may be on the front.
+  bool Eligible() const {
+    return error.empty() && !animats.empty() && failures == 0;
+  }
+};
+
+// Divergence of two runs whose dt differs by one ulp.
+struct ChaosResult {
+  std::string config;  // "default (E1)", "reference (R16)".
+  std::vector<int> steps;
+  // Over the animats, |d(t) - d'(t)| / f_ref at each of `steps`.
+  std::vector<double> median, p90, max;
+  // |f - f'| / f_ref over the animats.
+  double fitness_median = 0.0, fitness_p90 = 0.0, fitness_max = 0.0;
+  int animats = 0;
+  int failures = 0;
+};
+
+struct Report {
+  bool quick = false;
+  int repeats = 0;
+  std::vector<std::string> animats;  // Names, in order.
+  // Animats left out because their reference evaluation failed.
+  std::vector<std::string> excluded;
+  std::string machine;  // CPU, cores, load average.
+  double reference_ms_median = 0.0;
+  std::vector<double> reference_fitness;  // Per animat, in order.
+  std::vector<CandidateResult> candidates;
+  std::vector<ChaosResult> chaos;
+  double total_seconds = 0.0;
+};
+
+}  // namespace animat::accuracy
+
+#endif  // ANIMAT_BENCH_ACCURACY_RESULTS_H_

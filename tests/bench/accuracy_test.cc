@@ -1,0 +1,280 @@
+// The accuracy report's own logic: statistics, the Pareto front, the SVG
+// writer and the candidate set (bench/accuracy/).
+#include <cmath>
+#include <limits>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "bench/accuracy/candidates.h"
+#include "bench/accuracy/report.h"
+#include "bench/accuracy/stats.h"
+#include "bench/accuracy/svg_plot.h"
+
+namespace animat::accuracy {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+TEST(StatsTest, MedianOfOddCountIsTheMiddleValue) {
+  EXPECT_EQ(Median({5, 1, 3}), 3);
+}
+
+TEST(StatsTest, MedianOfEvenCountIsTheMeanOfTheMiddleTwo) {
+  EXPECT_EQ(Median({4, 1, 3, 2}), 2.5);
+}
+
+TEST(StatsTest, Percentile90InterpolatesBetweenRanks) {
+  // Position 0.9 * 9 = 8.1 in 1..10: 9 + 0.1 * (10 - 9).
+  EXPECT_DOUBLE_EQ(Percentile90({10, 9, 8, 7, 6, 5, 4, 3, 2, 1}), 9.1);
+  // Position 0.9 * 10 = 9 exactly: the 10th value.
+  EXPECT_EQ(Percentile90({0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10}), 9);
+  EXPECT_EQ(Percentile90({7}), 7);
+}
+
+TEST(StatsTest, FailuresCountAsInfiniteErrors) {
+  EXPECT_EQ(Median({1, 2, kInf}), 2);
+  EXPECT_EQ(Median({1, 2, kInf, kInf}), kInf);
+  EXPECT_EQ(Percentile90({1, 2, 3, kInf}), kInf);
+  EXPECT_EQ(Percentile90({kInf, kInf}), kInf);
+  // Ten finite values and one failure: the 90th percentile is still finite.
+  EXPECT_EQ(Percentile90({0, 1, 2, 3, 4, 5, 6, 7, 8, 9, kInf}), 9);
+}
+
+TEST(StatsTest, QuantileOfNothingIsNaN) { EXPECT_TRUE(std::isnan(Median({}))); }
+
+TEST(ParetoTest, KeepsOnlyUndominatedPointsInOrderOfCost) {
+  const std::vector<CostError> points = {
+      {4, 1},     // 0: front (most accurate).
+      {2, 5},     // 1: front.
+      {3, 5},     // 2: dominated by 1 (slower, same error).
+      {1, 10},    // 3: front.
+      {5, 2},     // 4: dominated by 0.
+      {2, 6},     // 5: dominated by 1 (same cost, worse error).
+      {0.5, 20},  // 6: front (fastest).
+      {kInf, 0},  // 7: not usable.
+      {3, kInf},  // 8: not usable.
+  };
+  EXPECT_EQ(ParetoFront(points), (std::vector<int>{6, 3, 1, 0}));
+}
+
+TEST(ParetoTest, EqualPointsAreAllOnTheFront) {
+  const std::vector<CostError> points = {{1, 1}, {2, 2}, {1, 1}};
+  EXPECT_EQ(ParetoFront(points), (std::vector<int>{0, 2}));
+}
+
+TEST(ParetoTest, EmptySetHasEmptyFront) {
+  EXPECT_TRUE(ParetoFront({}).empty());
+}
+
+// Checks that `xml` is well-formed enough for any XML reader: tags nest and
+// close, attribute values are quoted, '&' starts an entity, one root.
+// Returns "" or what is wrong.
+std::string CheckXml(const std::string& xml) {
+  std::vector<std::string> open;
+  int roots = 0;
+  size_t i = 0;
+  while (i < xml.size()) {
+    if (xml[i] == '&') {
+      bool entity = false;
+      for (const char* e : {"&amp;", "&lt;", "&gt;", "&quot;", "&apos;"}) {
+        entity = entity || xml.compare(i, std::string(e).size(), e) == 0;
+      }
+      if (!entity) return "bare & at " + std::to_string(i);
+      ++i;
+      continue;
+    }
+    if (xml[i] == '>') return "bare > at " + std::to_string(i);
+    if (xml[i] != '<') {
+      ++i;
+      continue;
+    }
+    if (xml.compare(i, 2, "<?") == 0) {
+      const size_t end = xml.find("?>", i);
+      if (end == std::string::npos) return "unclosed <?";
+      i = end + 2;
+      continue;
+    }
+    // A tag: read to its '>' outside quotes.
+    size_t j = i + 1;
+    bool quoted = false;
+    while (j < xml.size() && (quoted || xml[j] != '>')) {
+      if (xml[j] == '"') quoted = !quoted;
+      if (!quoted && xml[j] == '<')
+        return "< inside a tag at " + std::to_string(j);
+      ++j;
+    }
+    if (j >= xml.size()) return "unclosed tag at " + std::to_string(i);
+    const std::string tag = xml.substr(i + 1, j - i - 1);
+    i = j + 1;
+    if (tag.empty()) return "empty tag";
+    if (tag[0] == '/') {
+      const std::string name = tag.substr(1);
+      if (open.empty() || open.back() != name) {
+        return "</" + name + "> does not close " +
+               (open.empty() ? "anything" : "<" + open.back() + ">");
+      }
+      open.pop_back();
+      continue;
+    }
+    const std::string name = tag.substr(0, tag.find_first_of(" \n/"));
+    if (open.empty()) ++roots;
+    if (tag.back() != '/') open.push_back(name);
+  }
+  if (!open.empty()) return "<" + open.back() + "> never closed";
+  if (roots != 1) return std::to_string(roots) + " root elements";
+  return "";
+}
+
+int Count(const std::string& text, const std::string& what) {
+  int count = 0;
+  for (size_t at = text.find(what); at != std::string::npos;
+       at = text.find(what, at + 1)) {
+    ++count;
+  }
+  return count;
+}
+
+TEST(XmlCheckTest, RejectsMalformedDocuments) {
+  EXPECT_EQ(CheckXml("<a><b/></a>"), "");
+  EXPECT_NE(CheckXml("<a><b></a>"), "");
+  EXPECT_NE(CheckXml("<a>x & y</a>"), "");
+  EXPECT_NE(CheckXml("<a/><b/>"), "");
+}
+
+TEST(SvgTest, WellFormedWithOnePointPerCandidateAndTheFrontDrawn) {
+  const std::vector<PlotPoint> points = {
+      {"E1", "semi-implicit Euler", 30, 0.05, true},
+      {"E2", "semi-implicit Euler", 35, 0.04, false},
+      {"R4", "RK4", 120, 1e-6, true},
+      {"V2<&>", "velocity Verlet", 60, 0.2, false},
+      {"B1", "Bullet", 110, 0.05, false},
+  };
+  PlotOptions options;
+  options.title = "speed & error";
+  options.x_label = "ms";
+  options.y_label = "error";
+  options.legend_notes = {"a < b"};
+  const std::string svg = PlotSvg(points, options);
+
+  EXPECT_EQ(CheckXml(svg), "");
+  EXPECT_EQ(svg.find("<?xml"), 0u);
+  EXPECT_EQ(Count(svg, "<svg "), 1);
+  EXPECT_EQ(Count(svg, "<circle class=\"point"), 5);
+  EXPECT_EQ(Count(svg, "<circle class=\"point front\""), 2);
+  // One circle per point plus one legend marker per group and the front's.
+  EXPECT_EQ(Count(svg, "<circle "), 5 + 4 + 1);
+  ASSERT_EQ(Count(svg, "<polyline class=\"front\""), 1);
+  // The front's line runs through its two points.
+  const size_t at = svg.find("<polyline class=\"front\"");
+  const size_t from = svg.find("points=\"", at) + 8;
+  const std::string coordinates = svg.substr(from, svg.find('"', from) - from);
+  EXPECT_EQ(Count(coordinates, ","), 2) << coordinates;
+  EXPECT_NE(svg.find("V2&lt;&amp;&gt;"), std::string::npos);
+  // Tick labels on both axes.
+  EXPECT_NE(svg.find(">100<"), std::string::npos);
+  EXPECT_NE(svg.find(">1e-6<"), std::string::npos);
+}
+
+TEST(SvgTest, LeavesOutPointsThatLogAxesCannotShow) {
+  const std::vector<PlotPoint> points = {
+      {"ok", "g", 10, 0.1, true},
+      {"zero", "g", 20, 0, false},
+      {"inf", "g", 30, kInf, false},
+  };
+  const std::string svg = PlotSvg(points, {});
+  EXPECT_EQ(CheckXml(svg), "");
+  EXPECT_EQ(Count(svg, "<circle class=\"point"), 1);
+}
+
+TEST(SvgTest, EmptyPlotIsStillWellFormed) {
+  const std::string svg = PlotSvg({}, {});
+  EXPECT_EQ(CheckXml(svg), "");
+  EXPECT_EQ(Count(svg, "<circle class=\"point"), 0);
+  EXPECT_EQ(Count(svg, "<polyline"), 0);
+}
+
+TEST(CandidatesTest, SetCoversEveryCombinationWithUniqueLabels) {
+  const std::vector<Candidate> set = CandidateSet();
+  EXPECT_EQ(set.size(), 3u * 3 * 2 * 2 + 4);
+  std::set<std::string> labels;
+  for (const Candidate& c : set) labels.insert(c.Label());
+  EXPECT_EQ(labels.size(), set.size());
+  EXPECT_EQ(ReferenceCandidate().Label(), "R16");
+  EXPECT_EQ(DefaultCandidate().Label(), "E1");
+}
+
+TEST(CandidatesTest, ReferenceConfigIsRk4WithSixteenSubsteps) {
+  Result<ModelConfig> config = CandidateConfig(ReferenceCandidate());
+  ASSERT_TRUE(config.ok()) << config.status().message();
+  EXPECT_EQ(config->physics.integrator, Integrator::kRk4);
+  EXPECT_EQ(config->physics.substeps, 16);
+  EXPECT_EQ(config->physics.drag_update, DragUpdate::kExplicit);
+  EXPECT_EQ(config->physics.backend, PhysicsBackend::kNative);
+}
+
+// The number of fields of each line of `csv` (quotes respected).
+std::vector<int> FieldCounts(const std::string& csv) {
+  std::vector<int> counts;
+  int fields = 1;
+  bool quoted = false;
+  for (char c : csv) {
+    if (c == '"') quoted = !quoted;
+    if (quoted) continue;
+    if (c == ',') ++fields;
+    if (c == '\n') {
+      counts.push_back(fields);
+      fields = 1;
+    }
+  }
+  return counts;
+}
+
+TEST(ReportTest, CsvFieldsWithCommasOrQuotesAreQuoted) {
+  EXPECT_EQ(CsvField("plain"), "plain");
+  EXPECT_EQ(CsvField("a, b"), "\"a, b\"");
+  EXPECT_EQ(CsvField("say \"x\""), "\"say \"\"x\"\"\"");
+}
+
+TEST(ReportTest, WritersShowAnUnloadableCandidateAsARowWithItsError) {
+  Report report;
+  report.repeats = 1;
+  report.animats = {"a"};
+  report.reference_fitness = {1.0};
+  CandidateResult broken;
+  broken.candidate = CandidateSet().back();
+  broken.error = "grn.precision: not supported";
+  CandidateResult fine;
+  fine.candidate = DefaultCandidate();
+  fine.animats.push_back(
+      {"a", "ok", "", 1.1, 1.0, 0.1, 0.2, 30.0, 29.0, 7, true});
+  fine.fitness_error_median = fine.fitness_error_p90 = 0.1;
+  fine.trajectory_error_median = fine.trajectory_error_p90 = 0.2;
+  fine.ms_median = 30.0;
+  fine.on_front = true;
+  report.candidates = {fine, broken};
+
+  const std::string md = SummaryMarkdown(report);
+  EXPECT_NE(md.find("grn.precision: not supported"), std::string::npos);
+  EXPECT_NE(md.find("| `E1` |"), std::string::npos);
+  EXPECT_NE(md.find("not run"), std::string::npos);
+  const std::string csv = SummaryCsv(report);
+  EXPECT_EQ(Count(csv, "\n"), 3);
+  EXPECT_NE(csv.find("grn.precision: not supported"), std::string::npos);
+  const std::vector<int> summary_fields = FieldCounts(csv);
+  ASSERT_EQ(summary_fields.size(), 3u);
+  EXPECT_EQ(summary_fields[1], summary_fields[0]);
+  EXPECT_EQ(summary_fields[2], summary_fields[0]);
+  const std::vector<int> accuracy_fields = FieldCounts(AccuracyCsv(report));
+  ASSERT_EQ(accuracy_fields.size(), 3u);
+  EXPECT_EQ(accuracy_fields[1], accuracy_fields[0]);
+  EXPECT_EQ(accuracy_fields[2], accuracy_fields[0]);
+  const std::string svg = ReportSvg(report);
+  EXPECT_EQ(CheckXml(svg), "");
+  EXPECT_EQ(Count(svg, "<circle class=\"point front\""), 1);
+}
+
+}  // namespace
+}  // namespace animat::accuracy
