@@ -81,7 +81,8 @@ struct Developed {
 void BM_Evaluate(benchmark::State& state) {
   const Genome& genome = BenchGenome();
   ModelConfig config;
-  if (state.range(0) == 1) config.grn.precision = Precision::kFloat;
+  config.grn.precision =
+      state.range(0) == 1 ? Precision::kFloat : Precision::kDouble;
   EvaluationResult result;
   for (auto _ : state) {
     result = Evaluate(genome, config);

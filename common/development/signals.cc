@@ -86,19 +86,35 @@ template <typename S>
 void MorphogenFieldT<S>::SetGeometry(std::span<const Vec2> positions) {
   assert(static_cast<int>(positions.size()) == cells_);
   const int n = cells_;
+  // Distances of the pairs i < k, in order, then kernels and delays in
+  // contiguous (vectorised) passes, then both halves of the matrices.
+  pair_distance_.clear();
+  for (int i = 0; i < n; ++i) {
+    for (int k = i + 1; k < n; ++k) {
+      pair_distance_.push_back(Length(positions[k] - positions[i]));
+    }
+  }
+  const size_t pairs = pair_distance_.size();
+  pair_kernel_.resize(pairs);
+  pair_delay_.resize(pairs);
+  const double kernel_length = params_.kernel_length;
+  const double delay_length = params_.delay_length;
+  const double max_delay = params_.max_delay;
+  for (size_t p = 0; p < pairs; ++p) {
+    const double d = pair_distance_[p];
+    pair_kernel_[p] = Exp(-d / kernel_length);
+    const double steps = std::floor(d / delay_length + 0.5);
+    pair_delay_[p] = steps < max_delay ? steps : max_delay;
+  }
+  size_t p = 0;
   for (int i = 0; i < n; ++i) {
     kernel_[i * capacity_ + i] = S{1};
     delay_[i * capacity_ + i] = 0;
-    for (int k = i + 1; k < n; ++k) {
-      const double d = Length(positions[k] - positions[i]);
-      const double kernel = Exp(-d / params_.kernel_length);
-      const double steps = std::floor(d / params_.delay_length + 0.5);
-      const int delay = steps < params_.max_delay ? static_cast<int>(steps)
-                                                  : params_.max_delay;
+    for (int k = i + 1; k < n; ++k, ++p) {
       kernel_[i * capacity_ + k] = kernel_[k * capacity_ + i] =
-          static_cast<S>(kernel);
+          static_cast<S>(pair_kernel_[p]);
       delay_[i * capacity_ + k] = delay_[k * capacity_ + i] =
-          static_cast<uint8_t>(delay);
+          static_cast<uint8_t>(pair_delay_[p]);
     }
   }
 }
@@ -131,7 +147,36 @@ void ApplyKernel(int step, int n, int m_count, int capacity, const S* kernel,
     offset[d] = static_cast<uint32_t>(((step - d) & (kHistory - 1)) * m_count);
   }
   const size_t ring = static_cast<size_t>(kHistory) * m_count;
-  for (int i = 0; i < n; ++i) {
+  int i = 0;
+  if constexpr (kM > 0) {
+    // Four receiving cells at once: four independent chains of additions
+    // (the adds' latency, not their number, bounds one chain), each sum
+    // still taken over k in increasing order.
+    constexpr int kBlock = 4;
+    for (; i + kBlock <= n; i += kBlock) {
+      S sum[kBlock][kM] = {};
+      const S* kernel_row[kBlock];
+      const uint8_t* delay_row[kBlock];
+      for (int r = 0; r < kBlock; ++r) {
+        kernel_row[r] = &kernel[static_cast<size_t>(i + r) * capacity];
+        delay_row[r] = &delay[static_cast<size_t>(i + r) * capacity];
+      }
+      const S* ring_k = history;
+      for (int k = 0; k < n; ++k, ring_k += ring) {
+        for (int r = 0; r < kBlock; ++r) {
+          const S w = kernel_row[r][k];
+          const S* h = ring_k + offset[delay_row[r][k]];
+          for (int m = 0; m < kM; ++m) sum[r][m] += w * h[m];
+        }
+      }
+      for (int r = 0; r < kBlock; ++r) {
+        for (int m = 0; m < kM; ++m) {
+          out[static_cast<size_t>(i + r) * kM + m] = sum[r][m];
+        }
+      }
+    }
+  }
+  for (; i < n; ++i) {
     S sum[kM > 0 ? kM : 1] = {};
     S* acc = kM > 0 ? sum : &out[static_cast<size_t>(i) * m_count];
     if constexpr (kM == 0) std::fill_n(acc, m_count, S{0});

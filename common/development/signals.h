@@ -88,6 +88,8 @@ class MorphogenFieldT {
   std::vector<uint8_t> delay_;  // capacity x capacity
   std::vector<S> history_;      // [cell][slot][morphogen]
   mutable std::vector<S> sum_;  // scratch, [cell][morphogen]
+  // Scratch for SetGeometry, one entry per pair i < k.
+  std::vector<double> pair_distance_, pair_kernel_, pair_delay_;
 };
 
 using MorphogenField = MorphogenFieldT<double>;
