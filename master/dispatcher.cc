@@ -11,8 +11,12 @@ namespace {
 // Most credit a worker may hold: a hostile or broken peer asking for more
 // only gets this much (and its leases expire if it never answers).
 int CreditCap(int threads) {
-  return std::max(1, threads) * protocol::kPrefetch * 2;
+  return static_cast<int>(std::min<int64_t>(
+      int64_t{std::max(1, threads)} * protocol::kPrefetch * 2, 1 << 20));
 }
+
+// Threads a worker may claim (more would only inflate its credit cap).
+constexpr uint32_t kMaxThreads = 65536;
 
 }  // namespace
 
@@ -64,8 +68,10 @@ std::vector<Completion> Dispatcher::Poll(int timeout_ms) {
       Clock::now() + std::chrono::milliseconds(timeout_ms);
   for (;;) {
     Dispatch();
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-        end - Clock::now());
+    // Round the time left up, so the last fraction of a millisecond is
+    // waited for, not spun through.
+    const auto left =
+        std::chrono::ceil<std::chrono::milliseconds>(end - Clock::now());
     const long wait = std::clamp<long>(left.count(), 0,
                                        std::max(1, options_.heartbeat_ms / 4));
     zmq::pollitem_t item = {static_cast<void*>(*socket_), 0, ZMQ_POLLIN, 0};
@@ -113,7 +119,7 @@ void Dispatcher::Handle(const std::string& identity,
                         const v1::Envelope& envelope,
                         std::vector<Completion>* done) {
   if (envelope.has_hello()) {
-    Greet(identity, envelope.hello());
+    Greet(identity, envelope.hello(), envelope.protocol_version());
     return;
   }
   const auto it = workers_.find(identity);
@@ -149,7 +155,8 @@ void Dispatcher::Handle(const std::string& identity,
     case v1::Envelope::kGoodbye: {
       int returned = 0;
       for (uint64_t id : envelope.goodbye().returned()) {
-        if (worker.leased.erase(id) != 0) {
+        if (worker.leased.count(id) != 0) {
+          Unlease(id);
           Requeue(id, /*counts_as_attempt=*/false, done);
           ++returned;
         }
@@ -167,11 +174,16 @@ void Dispatcher::Handle(const std::string& identity,
   }
 }
 
-void Dispatcher::Greet(const std::string& identity, const v1::Hello& hello) {
+void Dispatcher::Greet(const std::string& identity, const v1::Hello& hello,
+                       uint32_t envelope_version) {
   const std::string name = hello.host() + ":" + std::to_string(hello.pid());
   std::string refusal;
-  if (hello.protocol_version() != protocol::kVersion) {
-    refusal = "protocol version " + std::to_string(hello.protocol_version()) +
+  if (envelope_version != protocol::kVersion ||
+      hello.protocol_version() != protocol::kVersion) {
+    const uint32_t theirs = envelope_version != protocol::kVersion
+                                ? envelope_version
+                                : hello.protocol_version();
+    refusal = "protocol version " + std::to_string(theirs) +
               " differs from the master's " +
               std::to_string(protocol::kVersion);
   } else if (hello.build_id() != protocol::BuildId()) {
@@ -183,6 +195,9 @@ void Dispatcher::Greet(const std::string& identity, const v1::Hello& hello) {
     refusal = "null-evaluation workers are not accepted by this master";
   }
   if (!refusal.empty()) {
+    if (workers_.count(identity) != 0) {
+      DropWorker(identity, /*died=*/false, nullptr);
+    }
     options_.log("refused worker " + name + ": " + refusal);
     ++stats_.refused;
     v1::Envelope envelope;
@@ -196,7 +211,8 @@ void Dispatcher::Greet(const std::string& identity, const v1::Hello& hello) {
   }
   WorkerState& worker = workers_[identity];
   worker.name = name;
-  worker.threads = static_cast<int>(std::max<uint32_t>(1, hello.threads()));
+  worker.threads =
+      static_cast<int>(std::clamp<uint32_t>(hello.threads(), 1, kMaxThreads));
   worker.last_heard = Clock::now();
   strangers_.erase(identity);
   v1::Envelope envelope;
@@ -236,10 +252,9 @@ void Dispatcher::Collect(const std::string& identity, WorkerState& worker,
       continue;
     }
     if (entry.leased) {
-      const auto holder = workers_.find(entry.worker);
-      if (holder != workers_.end()) holder->second.leased.erase(r.individual());
+      Unlease(r.individual());
     } else {
-      queue_.erase(std::find(queue_.begin(), queue_.end(), r.individual()));
+      Unqueue(r.individual());
     }
     Completion completion;
     completion.individual = r.individual();
@@ -253,33 +268,58 @@ void Dispatcher::Collect(const std::string& identity, WorkerState& worker,
   }
 }
 
+void Dispatcher::Lease(const std::string& identity, WorkerState& worker,
+                       uint64_t individual, Clock::time_point deadline,
+                       v1::Work* work) {
+  Individual& entry = pending_.at(individual);
+  *work->add_items() = entry.item;
+  entry.leased = true;
+  entry.worker = identity;
+  entry.deadline = deadline;
+  worker.leased.insert(individual);
+  --worker.credit;
+  ++stats_.dispatched;
+}
+
 void Dispatcher::Dispatch() {
   for (auto& [identity, worker] : workers_) {
-    if (queue_.empty()) return;
+    if (worker.credit <= 0 || worker.suspect.has_value()) continue;
+    const Clock::time_point deadline =
+        Clock::now() + std::chrono::milliseconds(options_.lease_ms);
+    if (!suspects_.empty()) {
+      // A suspect (its last worker died or its lease expired) goes alone to
+      // a worker holding nothing else, so it cannot take others down.
+      if (worker.leased.empty()) {
+        v1::Envelope envelope;
+        envelope.mutable_work()->set_config_hash(config_hash_);
+        const uint64_t suspect = suspects_.begin()->second;
+        suspects_.erase(suspects_.begin());
+        worker.suspect = suspect;
+        Lease(identity, worker, suspect, deadline, envelope.mutable_work());
+        Send(identity, envelope);
+        if (drainer_ == identity) drainer_.clear();
+        continue;
+      }
+      // One worker stops taking other work until it is empty.
+      if (drainer_.empty() || workers_.count(drainer_) == 0) {
+        drainer_ = identity;
+      }
+      if (drainer_ == identity) continue;
+    }
     while (worker.credit > 0 && !queue_.empty()) {
       v1::Envelope envelope;
       v1::Work* work = envelope.mutable_work();
       work->set_config_hash(config_hash_);
-      const Clock::time_point deadline =
-          Clock::now() + std::chrono::milliseconds(options_.lease_ms);
       while (worker.credit > 0 && !queue_.empty() &&
              work->items_size() < protocol::kMaxBatch) {
-        Individual& entry = pending_.at(queue_.front());
-        // A suspect (its last worker died or its lease expired) goes alone.
-        if (entry.attempts > 0 && work->items_size() > 0) break;
+        const uint64_t individual = queue_.front();
         queue_.pop_front();
-        *work->add_items() = entry.item;
-        entry.leased = true;
-        entry.worker = identity;
-        entry.deadline = deadline;
-        worker.leased.insert(entry.item.individual());
-        --worker.credit;
-        ++stats_.dispatched;
-        if (entry.attempts > 0) break;
+        Lease(identity, worker, individual, deadline, work);
       }
       Send(identity, envelope);
     }
   }
+  if (suspects_.empty()) drainer_.clear();
 }
 
 void Dispatcher::Housekeep(std::vector<Completion>* done) {
@@ -313,13 +353,12 @@ void Dispatcher::Housekeep(std::vector<Completion>* done) {
     if (entry.leased && now > entry.deadline) expired.push_back(id);
   }
   for (uint64_t id : expired) {
-    Individual& entry = pending_.at(id);
-    const auto holder = workers_.find(entry.worker);
+    const auto holder = workers_.find(pending_.at(id).worker);
     if (holder != workers_.end()) {
-      holder->second.leased.erase(id);
       options_.log("lease of individual " + std::to_string(id) + " on " +
                    holder->second.name + " expired");
     }
+    Unlease(id);
     Requeue(id, /*counts_as_attempt=*/true, done);
   }
 }
@@ -346,8 +385,30 @@ void Dispatcher::Requeue(uint64_t individual, bool counts_as_attempt,
     ++stats_.gave_up;
     return;
   }
-  // Retries go first, so a failure is decided quickly.
-  queue_.push_front(individual);
+  if (entry.attempts > 0) {
+    suspects_.insert({-entry.attempts, individual});
+  } else {
+    queue_.push_front(individual);  // Handed back: next in line.
+  }
+}
+
+void Dispatcher::Unlease(uint64_t individual) {
+  Individual& entry = pending_.at(individual);
+  const auto holder = workers_.find(entry.worker);
+  if (holder != workers_.end()) {
+    holder->second.leased.erase(individual);
+    if (holder->second.suspect == individual) holder->second.suspect.reset();
+  }
+  entry.leased = false;
+  entry.worker.clear();
+}
+
+void Dispatcher::Unqueue(uint64_t individual) {
+  if (suspects_.erase({-pending_.at(individual).attempts, individual}) != 0) {
+    return;
+  }
+  const auto it = std::find(queue_.begin(), queue_.end(), individual);
+  if (it != queue_.end()) queue_.erase(it);
 }
 
 void Dispatcher::DropWorker(const std::string& identity, bool died,
@@ -370,12 +431,27 @@ void Dispatcher::Send(const std::string& identity,
                   zmq::send_flags::sndmore | zmq::send_flags::dontwait);
     socket_->send(zmq::buffer(bytes), zmq::send_flags::dontwait);
   } catch (const zmq::error_t& e) {
-    options_.log(std::string("could not send ") + protocol::BodyName(envelope) +
-                 ": " + e.what());
+    // Counted as sent: the next attempt waits a heartbeat interval, and a
+    // worker that is gone is dropped when its silence runs out.
+    const auto it = workers_.find(identity);
+    if (it == workers_.end() || !it->second.send_failed) {
+      options_.log(
+          std::string("could not send ") + protocol::BodyName(envelope) +
+          " to " +
+          (it == workers_.end() ? std::string("a peer") : it->second.name) +
+          ": " + e.what());
+    }
+    if (it != workers_.end()) {
+      it->second.send_failed = true;
+      it->second.last_sent = Clock::now();
+    }
     return;
   }
   const auto it = workers_.find(identity);
-  if (it != workers_.end()) it->second.last_sent = Clock::now();
+  if (it != workers_.end()) {
+    it->second.last_sent = Clock::now();
+    it->second.send_failed = false;
+  }
 }
 
 void Dispatcher::Ignore(const std::string& what) {

@@ -20,8 +20,10 @@
 #include <deque>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "animat/v1/protocol.pb.h"
@@ -99,7 +101,9 @@ class Dispatcher {
     int credit = 0;
     Clock::time_point last_heard;
     Clock::time_point last_sent;
+    bool send_failed = false;  // The last send failed (logged once).
     std::set<uint64_t> leased;
+    std::optional<uint64_t> suspect;  // The suspect it holds alone.
   };
   struct Individual {
     v1::WorkItem item;
@@ -115,10 +119,17 @@ class Dispatcher {
   void Receive(std::vector<Completion>* done);
   void Handle(const std::string& identity, const v1::Envelope& envelope,
               std::vector<Completion>* done);
-  void Greet(const std::string& identity, const v1::Hello& hello);
+  void Greet(const std::string& identity, const v1::Hello& hello,
+             uint32_t envelope_version);
   void Collect(const std::string& identity, WorkerState& worker,
                const v1::Results& results, std::vector<Completion>* done);
   void Dispatch();
+  void Lease(const std::string& identity, WorkerState& worker,
+             uint64_t individual, Clock::time_point deadline, v1::Work* work);
+  // Ends an individual's lease (it stays pending).
+  void Unlease(uint64_t individual);
+  // Removes a queued individual from its queue.
+  void Unqueue(uint64_t individual);
   void Housekeep(std::vector<Completion>* done);
   // Back to the queue after a lease ended without a result.
   void Requeue(uint64_t individual, bool counts_as_attempt,
@@ -135,6 +146,10 @@ class Dispatcher {
   std::unique_ptr<zmq::socket_t> socket_;
   std::map<uint64_t, Individual> pending_;
   std::deque<uint64_t> queue_;  // Queued individuals, next first.
+  // Queued after a failed attempt, by most attempts first (so failures
+  // are decided quickly), then individual: (-attempts, individual).
+  std::set<std::pair<int, uint64_t>> suspects_;
+  std::string drainer_;  // The worker emptying itself for a suspect.
   std::map<std::string, WorkerState> workers_;
   std::set<std::string> strangers_;  // Unknown identities already logged.
   DispatcherStats stats_;

@@ -63,6 +63,7 @@ Worker::SessionEnd Worker::RunSession(zmq::context_t& context) {
   uint64_t config_hash = 0;
   bool stopping = false;
   std::vector<uint64_t> returned;
+  int uncredited = 0;  // Results finished before this session's welcome.
 
   auto send = [&](const v1::Envelope& envelope) {
     const std::string bytes = protocol::Encode(envelope);
@@ -104,14 +105,17 @@ Worker::SessionEnd Worker::RunSession(zmq::context_t& context) {
     }
     if (stopping && (!pool_ || pool_->in_flight() == 0)) {
       if (pool_) {
-        std::vector<v1::WorkResult> done = pool_->TakeFinished();
-        if (!done.empty()) {
-          v1::Envelope results;
-          for (v1::WorkResult& r : done) {
-            *results.mutable_results()->add_results() = std::move(r);
-          }
-          send(results);
+        for (v1::WorkResult& r : pool_->TakeFinished()) {
+          unsent_.push_back(std::move(r));
         }
+      }
+      if (!unsent_.empty()) {
+        v1::Envelope results;
+        for (v1::WorkResult& r : unsent_) {
+          *results.mutable_results()->add_results() = std::move(r);
+        }
+        unsent_.clear();
+        send(results);
       }
       v1::Envelope goodbye;
       for (uint64_t id : returned) goodbye.mutable_goodbye()->add_returned(id);
@@ -174,6 +178,7 @@ Worker::SessionEnd Worker::RunSession(zmq::context_t& context) {
                          std::to_string(options_.threads) + " threads)");
             send_credit(options_.threads * protocol::kPrefetch -
                         pool_->in_flight());
+            uncredited = static_cast<int>(unsent_.size());
             break;
           }
           case v1::Envelope::kRefuse:
@@ -189,7 +194,11 @@ Worker::SessionEnd Worker::RunSession(zmq::context_t& context) {
               break;
             }
             for (const v1::WorkItem& item : work.items()) {
-              pool_->Submit(item);
+              if (stopping) {
+                returned.push_back(item.individual());  // Handed back.
+              } else {
+                pool_->Submit(item);
+              }
             }
             break;
           }
@@ -204,20 +213,28 @@ Worker::SessionEnd Worker::RunSession(zmq::context_t& context) {
     }
 
     if (pool_ && (items[1].revents & ZMQ_POLLIN)) {
-      std::vector<v1::WorkResult> done = pool_->TakeFinished();
-      if (!done.empty() && welcomed) {
-        const int finished = static_cast<int>(done.size());
-        for (size_t begin = 0; begin < done.size();
-             begin += protocol::kMaxBatch) {
-          v1::Envelope results;
-          const size_t end = std::min(done.size(), begin + protocol::kMaxBatch);
-          for (size_t i = begin; i < end; ++i) {
-            *results.mutable_results()->add_results() = std::move(done[i]);
-          }
-          send(results);
+      std::vector<v1::WorkResult> finished_now = pool_->TakeFinished();
+      for (v1::WorkResult& r : finished_now) unsent_.push_back(std::move(r));
+    }
+    if (welcomed && !unsent_.empty()) {
+      // Results wait here for a session that welcomed us; a new master
+      // takes those it still needs and ignores the rest.
+      std::vector<v1::WorkResult> done;
+      done.swap(unsent_);
+      for (size_t begin = 0; begin < done.size();
+           begin += protocol::kMaxBatch) {
+        v1::Envelope results;
+        const size_t end = std::min(done.size(), begin + protocol::kMaxBatch);
+        for (size_t i = begin; i < end; ++i) {
+          *results.mutable_results()->add_results() = std::move(done[i]);
         }
-        if (!stopping) send_credit(finished);
+        send(results);
       }
+      // Results that finished before the welcome were not in flight when
+      // its credit was counted: they earn none now.
+      const int earned = static_cast<int>(done.size()) - uncredited;
+      uncredited = std::max(0, uncredited - static_cast<int>(done.size()));
+      if (!stopping) send_credit(earned);
     }
 
     if (MillisSince(last_sent) >= heartbeat_ms) {

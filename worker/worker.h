@@ -11,7 +11,9 @@
 #include <atomic>
 #include <memory>
 #include <string>
+#include <vector>
 
+#include "animat/v1/protocol.pb.h"
 #include "common/base/log.h"
 
 namespace zmq {
@@ -66,6 +68,8 @@ class Worker {
   // finish and are offered to the next one.
   std::unique_ptr<EvaluationPool> pool_;
   uint64_t pool_config_hash_ = 0;
+  // Finished results not yet sent (waiting for a welcome).
+  std::vector<v1::WorkResult> unsent_;
 };
 
 }  // namespace animat

@@ -48,7 +48,10 @@ Result<v1::Envelope> Decode(std::string_view frame) {
     return Status::InvalidArgument("not an animat.v1.Envelope (" +
                                    std::to_string(frame.size()) + " bytes)");
   }
-  if (envelope.protocol_version() != kVersion) {
+  // A hello and a refuse of another version still decode: they carry what
+  // the other side needs to refuse, or to know it was refused.
+  if (envelope.protocol_version() != kVersion && !envelope.has_hello() &&
+      !envelope.has_refuse()) {
     return Status::InvalidArgument("protocol version " +
                                    std::to_string(envelope.protocol_version()) +
                                    ", expected " + std::to_string(kVersion));

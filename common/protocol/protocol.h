@@ -53,7 +53,9 @@ const std::string& BuildId();
 std::string Encode(v1::Envelope envelope);
 
 // Parses one frame. Fails on bytes that are not an Envelope, on an
-// envelope of another protocol version, and on an envelope with no body.
+// envelope with no body, and on an envelope of another protocol version
+// unless it is a Hello (the master refuses it, naming both versions) or a
+// Refuse (the worker gives up).
 Result<v1::Envelope> Decode(std::string_view frame);
 
 // A result a master may record: a known status other than unspecified,

@@ -1,0 +1,377 @@
+// The fixture of the dispatch tests: an in-process Dispatcher on a free
+// loopback port with short heartbeats, its log lines captured, populations
+// of genomes with their results computed directly (animat::Evaluate in this
+// process), and a serve loop that records every completion so a test can
+// check that each individual completed exactly once, with the same bits as
+// the direct evaluation, whichever worker did it.
+#ifndef ANIMAT_TESTS_DISPATCH_DISPATCH_HARNESS_H_
+#define ANIMAT_TESTS_DISPATCH_DISPATCH_HARNESS_H_
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <chrono>
+#include <cstdint>
+#include <cstdlib>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+#include <zmq.hpp>
+
+#include "animat/v1/genome.pb.h"
+#include "animat/v1/trace.pb.h"
+#include "common/base/rng.h"
+#include "common/evaluation/evaluator.h"
+#include "common/evaluation/model_config.h"
+#include "common/genome/genome_proto.h"
+#include "common/genome/random_genome.h"
+#include "common/io/proto_file.h"
+#include "common/protocol/protocol.h"
+#include "master/dispatcher.h"
+#include "tests/dispatch/worker_process.h"
+#include "tests/test_util.h"
+
+namespace animat::testing {
+
+using std::chrono::milliseconds;
+using Clock = std::chrono::steady_clock;
+
+// Heartbeat interval of every test: a peer silent for 300 ms is dead.
+inline constexpr int kHeartbeatMs = 100;
+// Motion steps that make a viable genome's evaluation last about 100 ms:
+// about 2.5 us a step in an optimised build, some 50 times more in a Debug
+// build with sanitizers (the tests that act during an evaluation use it).
+#ifdef NDEBUG
+inline constexpr int kMotionStepsFor100Ms = 40000;
+#else
+inline constexpr int kMotionStepsFor100Ms = 4000;
+#endif
+// Bounds on waits that normally end far sooner (they end as soon as the
+// condition holds); generous for sanitizer builds.
+inline constexpr milliseconds kLongWait{30000};
+inline constexpr milliseconds kShortWait{10000};
+
+// A genome of tests/data/genomes.
+inline v1::Genome DataGenome(const std::string& name) {
+  v1::Genome genome;
+  const Status status =
+      ReadProtoFile(TestData("genomes/" + name + ".json"), &genome);
+  EXPECT_TRUE(status.ok()) << status.ToString();
+  return genome;
+}
+
+// The three viable genomes of tests/data: each runs the whole motion phase.
+inline std::vector<v1::Genome> ViableGenomes() {
+  return {DataGenome("seed-1198"), DataGenome("seed-1203"),
+          DataGenome("seed-139")};
+}
+
+// `count` genomes: the six of tests/data (three viable, three failing at
+// different stages), then random ones (RandomGenome, run seed 2024, stream
+// of the genome's index).
+inline std::vector<v1::Genome> MixedGenomes(int count) {
+  std::vector<v1::Genome> genomes = {
+      DataGenome("seed-1198"),        DataGenome("seed-1203"),
+      DataGenome("seed-139"),         DataGenome("example"),
+      DataGenome("seed-1-nonviable"), DataGenome("seed-2-too-few-cells")};
+  genomes.resize(std::min<size_t>(genomes.size(), count));
+  for (int i = static_cast<int>(genomes.size()); i < count; ++i) {
+    RandomStream stream(2024, static_cast<uint64_t>(i),
+                        StreamPurpose::kRandomGenome);
+    genomes.push_back(GenomeToProto(RandomGenome(stream)));
+  }
+  return genomes;
+}
+
+// The result of evaluating `genome` here, directly (no cache).
+inline v1::EvaluationResult EvaluateDirectly(const v1::Genome& genome,
+                                             const ModelConfig& config) {
+  Result<Genome> parsed = GenomeFromProto(genome);
+  if (parsed.ok()) return EvaluationResultToProto(Evaluate(*parsed, config));
+  // As the worker reports a genome that fails validation.
+  EvaluationResult invalid;
+  invalid.status = EvalStatus::kInvalidGenome;
+  invalid.reason = parsed.status().message();
+  return EvaluationResultToProto(invalid);
+}
+
+// The direct results of `genomes`: what every worker must answer. Cached
+// by genome and configuration hashes; genomes not seen yet are evaluated
+// on several threads at once (Evaluate shares nothing between calls).
+inline std::vector<v1::EvaluationResult> DirectResults(
+    const std::vector<v1::Genome>& genomes, const ModelConfig& config) {
+  using Key = std::pair<uint64_t, uint64_t>;
+  static std::map<Key, v1::EvaluationResult> cache;
+  const uint64_t config_hash = protocol::ConfigHash(ConfigToProto(config));
+  std::map<Key, const v1::Genome*> missing;
+  for (const v1::Genome& genome : genomes) {
+    const Key key = {protocol::GenomeHash(genome), config_hash};
+    if (cache.count(key) == 0) missing.emplace(key, &genome);
+  }
+  std::vector<std::pair<Key, const v1::Genome*>> work(missing.begin(),
+                                                      missing.end());
+  std::vector<v1::EvaluationResult> computed(work.size());
+  std::atomic<size_t> next{0};
+  auto run = [&] {
+    for (size_t i = next++; i < work.size(); i = next++) {
+      computed[i] = EvaluateDirectly(*work[i].second, config);
+    }
+  };
+  std::vector<std::thread> threads;
+  const unsigned count = std::max(1u, std::thread::hardware_concurrency());
+  for (unsigned t = 1; t < count && t < work.size(); ++t) {
+    threads.emplace_back(run);
+  }
+  run();
+  for (std::thread& t : threads) t.join();
+  for (size_t i = 0; i < work.size(); ++i) {
+    cache.emplace(work[i].first, computed[i]);
+  }
+  std::vector<v1::EvaluationResult> results;
+  for (const v1::Genome& genome : genomes) {
+    results.push_back(cache.at({protocol::GenomeHash(genome), config_hash}));
+  }
+  return results;
+}
+
+inline v1::EvaluationResult DirectResult(const v1::Genome& genome,
+                                         const ModelConfig& config) {
+  return DirectResults({genome}, config)[0];
+}
+
+struct Individual {
+  uint64_t id = 0;
+  v1::Genome genome;
+  v1::EvaluationResult expected;  // The direct evaluation's.
+};
+
+// Checks every field of `actual` against `expected`, fitness bit for bit.
+inline void ExpectSameResult(const v1::EvaluationResult& actual,
+                             const v1::EvaluationResult& expected,
+                             uint64_t individual) {
+  SCOPED_TRACE("individual " + std::to_string(individual));
+  EXPECT_EQ(v1::EvaluationResult::Status_Name(actual.status()),
+            v1::EvaluationResult::Status_Name(expected.status()))
+      << actual.reason();
+  EXPECT_EQ(actual.reason(), expected.reason());
+  ASSERT_EQ(actual.has_fitness(), expected.has_fitness());
+  if (expected.has_fitness()) {
+    EXPECT_EQ(std::bit_cast<uint64_t>(actual.fitness()),
+              std::bit_cast<uint64_t>(expected.fitness()))
+        << actual.fitness() << " vs " << expected.fitness();
+  }
+  EXPECT_EQ(actual.cells(), expected.cells());
+  EXPECT_EQ(actual.steps(), expected.steps());
+  EXPECT_EQ(actual.state_hash(), expected.state_hash());
+}
+
+// The dispatcher's log lines, in order.
+class LogLines {
+ public:
+  LogSink Sink() {
+    return [this](std::string_view line) { lines_.emplace_back(line); };
+  }
+  const std::vector<std::string>& lines() const { return lines_; }
+  size_t size() const { return lines_.size(); }
+  // Lines (from the `from`-th on) that contain every one of `parts`.
+  int Count(const std::vector<std::string>& parts, size_t from = 0) const {
+    int n = 0;
+    for (size_t i = from; i < lines_.size(); ++i) {
+      bool all = true;
+      for (const std::string& part : parts) {
+        all = all && lines_[i].find(part) != std::string::npos;
+      }
+      n += all ? 1 : 0;
+    }
+    return n;
+  }
+  // The first such line, or "".
+  std::string Find(const std::vector<std::string>& parts,
+                   size_t from = 0) const {
+    for (size_t i = from; i < lines_.size(); ++i) {
+      bool all = true;
+      for (const std::string& part : parts) {
+        all = all && lines_[i].find(part) != std::string::npos;
+      }
+      if (all) return lines_[i];
+    }
+    return "";
+  }
+  // The lines, a run of identical ones shown once with its count.
+  std::string Dump(size_t from = 0) const {
+    std::string text;
+    for (size_t i = from; i < lines_.size();) {
+      size_t end = i + 1;
+      while (end < lines_.size() && lines_[end] == lines_[i]) ++end;
+      text += lines_[i];
+      if (end - i > 1) text += "  [" + std::to_string(end - i) + " times]";
+      text += "\n";
+      i = end;
+    }
+    return text;
+  }
+
+ private:
+  std::vector<std::string> lines_;
+};
+
+class DispatchTest : public ::testing::Test {
+ protected:
+  DispatchTest() { config_.evaluation.motion_steps = 300; }
+
+  // The log is printed when the test failed, or always with
+  // ANIMAT_DISPATCH_TEST_LOG=1 in the environment.
+  void TearDown() override {
+    if (HasFailure() || std::getenv("ANIMAT_DISPATCH_TEST_LOG") != nullptr) {
+      std::cerr << "--- dispatcher log ---\n"
+                << log_.Dump() << "--- end of dispatcher log ---\n";
+    }
+  }
+
+  DispatcherOptions Options() {
+    DispatcherOptions options;
+    options.endpoint = "tcp://127.0.0.1:*";
+    options.heartbeat_ms = kHeartbeatMs;
+    options.log = log_.Sink();
+    return options;
+  }
+
+  // Binds a dispatcher for config_ (retrying while the address is still
+  // held by a dispatcher just destroyed); false on failure.
+  bool StartDispatcher(DispatcherOptions options) {
+    const auto end = Clock::now() + kShortWait;
+    for (;;) {
+      Result<std::unique_ptr<Dispatcher>> created =
+          Dispatcher::Create(&context_, options, config_);
+      if (created.ok()) {
+        dispatcher_ = std::move(created).value();
+        return true;
+      }
+      if (Clock::now() >= end) {
+        ADD_FAILURE() << created.status().ToString();
+        return false;
+      }
+      std::this_thread::sleep_for(milliseconds(20));
+    }
+  }
+  bool StartDispatcher() { return StartDispatcher(Options()); }
+
+  WorkerArgs Worker(int threads) const {
+    WorkerArgs args;
+    args.endpoint = dispatcher_->endpoint();
+    args.threads = threads;
+    args.heartbeat_ms = kHeartbeatMs;
+    return args;
+  }
+
+  // Individuals first_id, first_id + 1, ... carrying `genomes`, with their
+  // direct results under config_ (computed now, before any worker runs).
+  std::vector<Individual> Population(const std::vector<v1::Genome>& genomes,
+                                     uint64_t first_id) const {
+    const std::vector<v1::EvaluationResult> expected =
+        DirectResults(genomes, config_);
+    std::vector<Individual> population;
+    for (size_t i = 0; i < genomes.size(); ++i) {
+      Individual individual;
+      individual.id = first_id + i;
+      individual.genome = genomes[i];
+      individual.expected = expected[i];
+      population.push_back(std::move(individual));
+    }
+    return population;
+  }
+
+  void Submit(const std::vector<Individual>& population) {
+    for (const Individual& individual : population) {
+      dispatcher_->Submit(individual.id, individual.genome);
+    }
+  }
+
+  // Serves (Poll in short slices, calling `tick` before each) until `done`
+  // holds or `timeout` passes; returns `done()`. Every completion is kept.
+  bool Serve(const std::function<bool()>& done, milliseconds timeout,
+             const std::function<void()>& tick = {}) {
+    const auto end = Clock::now() + timeout;
+    for (;;) {
+      if (tick) tick();
+      for (Completion& c : dispatcher_->Poll(10)) {
+        completions_.push_back(std::move(c));
+      }
+      if (done()) return true;
+      if (Clock::now() >= end) return false;
+    }
+  }
+  // Serves for `duration`, whatever happens.
+  void ServeFor(milliseconds duration, const std::function<void()>& tick = {}) {
+    Serve([] { return false; }, duration, tick);
+  }
+  bool ServeUntilAllDone(milliseconds timeout = kLongWait,
+                         const std::function<void()>& tick = {}) {
+    return Serve([this] { return dispatcher_->pending() == 0; }, timeout, tick);
+  }
+
+  int CompletionsOf(uint64_t id) const {
+    int n = 0;
+    for (const Completion& c : completions_) n += c.individual == id ? 1 : 0;
+    return n;
+  }
+  const Completion* FindCompletion(uint64_t id) const {
+    for (const Completion& c : completions_) {
+      if (c.individual == id) return &c;
+    }
+    return nullptr;
+  }
+  std::set<std::string> CompletingWorkers() const {
+    std::set<std::string> names;
+    for (const Completion& c : completions_) names.insert(c.worker);
+    return names;
+  }
+
+  // Every individual of `population` completed exactly once, with its
+  // direct result; nothing else completed.
+  void ExpectEachCompletedOnceAsEvaluatedDirectly(
+      const std::vector<Individual>& population) {
+    std::map<uint64_t, const Individual*> by_id;
+    for (const Individual& individual : population) {
+      by_id[individual.id] = &individual;
+    }
+    std::map<uint64_t, int> count;
+    for (const Completion& c : completions_) {
+      const int n = ++count[c.individual];
+      EXPECT_EQ(n, 1) << "individual " << c.individual
+                      << " completed again, by " << c.worker;
+      const auto it = by_id.find(c.individual);
+      if (it == by_id.end()) {
+        ADD_FAILURE() << "completion for individual " << c.individual
+                      << ", never submitted";
+        continue;
+      }
+      if (n == 1)
+        ExpectSameResult(c.result, it->second->expected, c.individual);
+    }
+    for (const Individual& individual : population) {
+      EXPECT_EQ(count[individual.id], 1)
+          << "individual " << individual.id << " completed "
+          << count[individual.id] << " times";
+    }
+    EXPECT_EQ(dispatcher_->pending(), 0u);
+  }
+
+  zmq::context_t context_{1};
+  ModelConfig config_;
+  LogLines log_;
+  std::unique_ptr<Dispatcher> dispatcher_;
+  std::vector<Completion> completions_;
+};
+
+}  // namespace animat::testing
+
+#endif  // ANIMAT_TESTS_DISPATCH_DISPATCH_HARNESS_H_
