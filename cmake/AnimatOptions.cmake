@@ -14,6 +14,22 @@ if(ANIMAT_ARCH AND CMAKE_SYSTEM_PROCESSOR MATCHES "x86_64|AMD64")
   add_compile_options(-march=${ANIMAT_ARCH})
 endif()
 
+# Fuzzing (fuzz/): every target gets libFuzzer's coverage instrumentation
+# and, unless ANIMAT_SANITIZE says otherwise, ASan and UBSan, so the
+# libraries a fuzz target links are checked as closely as the target.
+# Only the fuzz targets link libFuzzer itself (-fsanitize=fuzzer).
+if(ANIMAT_BUILD_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "ANIMAT_BUILD_FUZZ needs clang for libFuzzer "
+                        "(CXX=clang++-14); the compiler is "
+                        "${CMAKE_CXX_COMPILER_ID}")
+  endif()
+  add_compile_options(-fsanitize=fuzzer-no-link)
+  if(NOT ANIMAT_SANITIZE)
+    set(ANIMAT_SANITIZE address,undefined)
+  endif()
+endif()
+
 if(ANIMAT_SANITIZE)
   add_compile_options(-fsanitize=${ANIMAT_SANITIZE} -fno-omit-frame-pointer
                       -fno-sanitize-recover=all)

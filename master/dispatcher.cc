@@ -1,6 +1,7 @@
 #include "master/dispatcher.h"
 
 #include <algorithm>
+#include <cmath>
 #include <zmq.hpp>
 
 #include "common/protocol/zmq_poll.h"
@@ -11,12 +12,11 @@ namespace {
 // Most credit a worker may hold: a hostile or broken peer asking for more
 // only gets this much (and its leases expire if it never answers).
 int CreditCap(int threads) {
-  return static_cast<int>(std::min<int64_t>(
-      int64_t{std::max(1, threads)} * protocol::kPrefetch * 2, 1 << 20));
+  return static_cast<int>(
+      std::min<int64_t>(int64_t{std::max(1, threads)} * protocol::kPrefetch *
+                            protocol::kCreditCapFactor,
+                        1 << 20));
 }
-
-// Threads a worker may claim (more would only inflate its credit cap).
-constexpr uint32_t kMaxThreads = 65536;
 
 }  // namespace
 
@@ -59,6 +59,7 @@ void Dispatcher::Submit(uint64_t individual, const v1::Genome& genome) {
   entry.item.set_individual(individual);
   *entry.item.mutable_genome() = genome;
   entry.item.set_genome_hash(protocol::GenomeHash(genome));
+  entry.bytes = entry.item.ByteSizeLong();
   queue_.push_back(individual);
 }
 
@@ -211,8 +212,8 @@ void Dispatcher::Greet(const std::string& identity, const v1::Hello& hello,
   }
   WorkerState& worker = workers_[identity];
   worker.name = name;
-  worker.threads =
-      static_cast<int>(std::clamp<uint32_t>(hello.threads(), 1, kMaxThreads));
+  worker.threads = static_cast<int>(
+      std::clamp<uint32_t>(hello.threads(), 1, protocol::kMaxThreads));
   worker.last_heard = Clock::now();
   strangers_.erase(identity);
   v1::Envelope envelope;
@@ -244,7 +245,12 @@ void Dispatcher::Collect(const std::string& identity, WorkerState& worker,
              " from " + worker.name + " for another genome");
       continue;
     }
-    const Status valid = protocol::ValidateResult(r.result());
+    Status valid = protocol::ValidateResult(r.result());
+    if (valid.ok() &&
+        !(std::isfinite(r.wall_seconds()) && r.wall_seconds() >= 0.0)) {
+      valid = Status::InvalidArgument("wall time " +
+                                      std::to_string(r.wall_seconds()));
+    }
     if (!valid.ok()) {
       Ignore("an invalid result for individual " +
              std::to_string(r.individual()) + " from " + worker.name + ": " +
@@ -276,6 +282,10 @@ void Dispatcher::Lease(const std::string& identity, WorkerState& worker,
   entry.leased = true;
   entry.worker = identity;
   entry.deadline = deadline;
+  entry.lease = ++leases_made_;
+  // Deadlines are handed out in time order, so expiry only looks at the
+  // front of this queue.
+  lease_order_.push_back({deadline, individual, entry.lease});
   worker.leased.insert(individual);
   --worker.credit;
   ++stats_.dispatched;
@@ -296,7 +306,7 @@ void Dispatcher::Dispatch() {
         suspects_.erase(suspects_.begin());
         worker.suspect = suspect;
         Lease(identity, worker, suspect, deadline, envelope.mutable_work());
-        Send(identity, envelope);
+        SendWork(identity, worker, std::move(envelope));
         if (drainer_ == identity) drainer_.clear();
         continue;
       }
@@ -310,16 +320,41 @@ void Dispatcher::Dispatch() {
       v1::Envelope envelope;
       v1::Work* work = envelope.mutable_work();
       work->set_config_hash(config_hash_);
+      size_t bytes = 0;
       while (worker.credit > 0 && !queue_.empty() &&
              work->items_size() < protocol::kMaxBatch) {
         const uint64_t individual = queue_.front();
+        const size_t item_bytes = pending_.at(individual).bytes;
+        // Keep each message well inside the sockets' size limit.
+        if (work->items_size() > 0 &&
+            bytes + item_bytes > protocol::kMaxWorkBytes) {
+          break;
+        }
+        bytes += item_bytes;
         queue_.pop_front();
         Lease(identity, worker, individual, deadline, work);
       }
-      Send(identity, envelope);
+      if (!SendWork(identity, worker, std::move(envelope))) break;
     }
   }
   if (suspects_.empty()) drainer_.clear();
+}
+
+bool Dispatcher::SendWork(const std::string& identity, WorkerState& worker,
+                          v1::Envelope envelope) {
+  std::vector<uint64_t> items;
+  for (const v1::WorkItem& item : envelope.work().items()) {
+    items.push_back(item.individual());
+  }
+  if (Send(identity, std::move(envelope))) return true;
+  // Not delivered (the worker's queue is full or it is gone): the items
+  // go back at once, without counting an attempt.
+  for (auto id = items.rbegin(); id != items.rend(); ++id) {
+    Unlease(*id);
+    ++worker.credit;
+    Requeue(*id, /*counts_as_attempt=*/false, nullptr);
+  }
+  return false;
 }
 
 void Dispatcher::Housekeep(std::vector<Completion>* done) {
@@ -348,9 +383,16 @@ void Dispatcher::Housekeep(std::vector<Completion>* done) {
     DropWorker(identity, /*died=*/true, done);
   }
   // Expired leases (their worker may still answer: the first result wins).
+  // Records of leases that already ended are dropped on the way.
   std::vector<uint64_t> expired;
-  for (const auto& [id, entry] : pending_) {
-    if (entry.leased && now > entry.deadline) expired.push_back(id);
+  while (!lease_order_.empty()) {
+    const LeaseRecord& record = lease_order_.front();
+    const auto it = pending_.find(record.individual);
+    const bool live = it != pending_.end() && it->second.leased &&
+                      it->second.lease == record.lease;
+    if (live && !(now > record.deadline)) break;  // The rest are later.
+    if (live) expired.push_back(record.individual);
+    lease_order_.pop_front();
   }
   for (uint64_t id : expired) {
     const auto holder = workers_.find(pending_.at(id).worker);
@@ -423,35 +465,37 @@ void Dispatcher::DropWorker(const std::string& identity, bool died,
   }
 }
 
-void Dispatcher::Send(const std::string& identity,
-                      const v1::Envelope& envelope) {
-  const std::string bytes = protocol::Encode(envelope);
-  try {
-    socket_->send(zmq::buffer(identity),
-                  zmq::send_flags::sndmore | zmq::send_flags::dontwait);
-    socket_->send(zmq::buffer(bytes), zmq::send_flags::dontwait);
-  } catch (const zmq::error_t& e) {
-    // Counted as sent: the next attempt waits a heartbeat interval, and a
-    // worker that is gone is dropped when its silence runs out.
-    const auto it = workers_.find(identity);
-    if (it == workers_.end() || !it->second.send_failed) {
-      options_.log(
-          std::string("could not send ") + protocol::BodyName(envelope) +
-          " to " +
-          (it == workers_.end() ? std::string("a peer") : it->second.name) +
-          ": " + e.what());
-    }
-    if (it != workers_.end()) {
-      it->second.send_failed = true;
-      it->second.last_sent = Clock::now();
-    }
-    return;
-  }
+bool Dispatcher::Send(const std::string& identity, v1::Envelope envelope) {
+  const char* what = protocol::BodyName(envelope);
+  const std::string bytes = protocol::Encode(std::move(envelope));
   const auto it = workers_.find(identity);
-  if (it != workers_.end()) {
-    it->second.last_sent = Clock::now();
-    it->second.send_failed = false;
+  std::string problem;
+  try {
+    // dontwait: an empty result means the peer's queue is full.
+    if (!socket_->send(zmq::buffer(identity),
+                       zmq::send_flags::sndmore | zmq::send_flags::dontwait) ||
+        !socket_->send(zmq::buffer(bytes), zmq::send_flags::dontwait)) {
+      problem = "its queue is full";
+    }
+  } catch (const zmq::error_t& e) {
+    problem = e.what();
   }
+  if (it != workers_.end()) it->second.last_sent = Clock::now();
+  if (problem.empty()) {
+    if (it != workers_.end()) it->second.send_failed = false;
+    return true;
+  }
+  // Counted as sent: the next attempt waits a heartbeat interval, and a
+  // worker that is gone is dropped when its silence runs out. Logged once
+  // per worker until a send succeeds again.
+  if (it == workers_.end() || !it->second.send_failed) {
+    options_.log(
+        std::string("could not send ") + what + " to " +
+        (it == workers_.end() ? std::string("a peer") : it->second.name) +
+        ": " + problem);
+  }
+  if (it != workers_.end()) it->second.send_failed = true;
+  return false;
 }
 
 void Dispatcher::Ignore(const std::string& what) {

@@ -107,6 +107,8 @@ class Dispatcher {
   };
   struct Individual {
     v1::WorkItem item;
+    size_t bytes = 0;    // Of the serialised item.
+    uint64_t lease = 0;  // Serial of its current lease.
     int attempts = 0;
     bool leased = false;
     std::string worker;  // Identity, when leased.
@@ -136,7 +138,12 @@ class Dispatcher {
                std::vector<Completion>* done);
   void DropWorker(const std::string& identity, bool died,
                   std::vector<Completion>* done);
-  void Send(const std::string& identity, const v1::Envelope& envelope);
+  // True when the message was handed to the socket.
+  bool Send(const std::string& identity, v1::Envelope envelope);
+  // Sends work; if it cannot be delivered, its items go back to the queue
+  // at once (no attempt counted) and false is returned.
+  bool SendWork(const std::string& identity, WorkerState& worker,
+                v1::Envelope envelope);
   void Ignore(const std::string& what);
 
   DispatcherOptions options_;
@@ -150,6 +157,15 @@ class Dispatcher {
   // are decided quickly), then individual: (-attempts, individual).
   std::set<std::pair<int, uint64_t>> suspects_;
   std::string drainer_;  // The worker emptying itself for a suspect.
+  // Leases in the order made (their deadlines are non-decreasing); a record
+  // whose lease already ended is skipped when it reaches the front.
+  struct LeaseRecord {
+    Clock::time_point deadline;
+    uint64_t individual;
+    uint64_t lease;
+  };
+  std::deque<LeaseRecord> lease_order_;
+  uint64_t leases_made_ = 0;
   std::map<std::string, WorkerState> workers_;
   std::set<std::string> strangers_;  // Unknown identities already logged.
   DispatcherStats stats_;

@@ -7,6 +7,7 @@
 #include <csignal>
 #include <thread>
 
+#include <google/protobuf/stubs/logging.h>
 #include <CLI/CLI.hpp>
 
 #include "worker/worker.h"
@@ -45,6 +46,9 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 2;
   }
 
+  // Malformed input is reported through our log; protobuf's own lines
+  // about it would only repeat it outside the log.
+  google::protobuf::SetLogHandler(nullptr);
   animat::Worker worker(options);
   g_worker = &worker;
   struct sigaction action = {};

@@ -38,6 +38,9 @@ int Worker::Run() {
     const SessionEnd end = RunSession(context);
     if (end == SessionEnd::kRefused) return kExitRefused;
     if (end == SessionEnd::kStopped) break;
+    if (end == SessionEnd::kLostAfterWelcome) {
+      backoff = options_.reconnect_min_ms;
+    }
     options_.log("master silent; reconnecting in " + std::to_string(backoff) +
                  " ms");
     for (int waited = 0; waited < backoff && !stop_.load(); waited += 20) {
@@ -245,7 +248,7 @@ Worker::SessionEnd Worker::RunSession(zmq::context_t& context) {
     if (MillisSince(last_heard) > protocol::kLiveness * heartbeat_ms) {
       if (stopping) return SessionEnd::kStopped;
       if (pool_) pool_->Abandon();  // The next master re-sends what it needs.
-      return SessionEnd::kLost;
+      return welcomed ? SessionEnd::kLostAfterWelcome : SessionEnd::kLost;
     }
   }
 }

@@ -15,6 +15,7 @@
 
 #include "animat/v1/protocol.pb.h"
 #include "common/base/log.h"
+#include "common/protocol/protocol.h"
 
 namespace zmq {
 class context_t;
@@ -32,11 +33,11 @@ struct WorkerOptions {
   // the master must accept such workers explicitly.
   bool null_evaluation = false;
   // Heartbeat interval until the master's Welcome sets its own.
-  int heartbeat_ms = 1000;
+  int heartbeat_ms = protocol::kHeartbeatMs;
   // Reconnection backoff after the master falls silent: doubles from min
   // to max.
-  int reconnect_min_ms = 100;
-  int reconnect_max_ms = 5000;
+  int reconnect_min_ms = protocol::kReconnectMinMs;
+  int reconnect_max_ms = protocol::kReconnectMaxMs;
   LogSink log = Prefixed("worker", StderrSink);
 };
 
@@ -58,7 +59,9 @@ class Worker {
   void Stop() { stop_.store(true, std::memory_order_relaxed); }
 
  private:
-  enum class SessionEnd { kStopped, kRefused, kLost };
+  // kLost: the master fell silent (kLostAfterWelcome: after welcoming us,
+  // so the backoff starts again from its minimum).
+  enum class SessionEnd { kStopped, kRefused, kLost, kLostAfterWelcome };
   SessionEnd RunSession(zmq::context_t& context);
 
   WorkerOptions options_;

@@ -29,11 +29,17 @@ inline constexpr uint32_t kVersion = 1;
 inline constexpr int kHeartbeatMs = 1000;
 inline constexpr int kLiveness = 3;
 
-// Sockets refuse messages larger than this (ZMQ_MAXMSGSIZE); a Work or
-// Results message is kept well below it by kMaxBatch.
+// Sockets refuse messages larger than this (ZMQ_MAXMSGSIZE).
 inline constexpr int64_t kMaxMessageBytes = 64 << 20;
-// Most items in one Work message.
+// Most items in one Work or Results message, and most bytes of items in one
+// Work message (half the limit: genomes of up to 10000 elements, about
+// 350 KB each, always fit).
 inline constexpr int kMaxBatch = 256;
+inline constexpr size_t kMaxWorkBytes = kMaxMessageBytes / 2;
+// A worker may hold threads * kPrefetch * kCreditCapFactor credit, and may
+// claim at most kMaxThreads threads.
+inline constexpr int kCreditCapFactor = 2;
+inline constexpr uint32_t kMaxThreads = 65536;
 // Evaluations are prefetched: a worker asks for threads * kPrefetch.
 inline constexpr int kPrefetch = 2;
 // An individual whose evaluation killed a worker or timed out this many
