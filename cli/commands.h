@@ -16,6 +16,8 @@ Command AddRandomGenomeCommand(CLI::App& app);
 Command AddGrnCommand(CLI::App& app);
 Command AddSimulateCommand(CLI::App& app);
 Command AddSceneCommand(CLI::App& app);
+Command AddEvolveCommand(CLI::App& app);
+Command AddLineageCommand(CLI::App& app);
 
 // Prints "animat: <message>" to stderr and returns 1.
 int Fail(const std::string& message);

@@ -15,6 +15,8 @@ int main(int argc, char** argv) {
   commands["grn"] = animat::cli::AddGrnCommand(app);
   commands["simulate"] = animat::cli::AddSimulateCommand(app);
   commands["scene"] = animat::cli::AddSceneCommand(app);
+  commands["evolve"] = animat::cli::AddEvolveCommand(app);
+  commands["lineage"] = animat::cli::AddLineageCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -10,6 +10,7 @@ packages=(
   libcli11-dev
   libbullet-dev
   libzmq3-dev cppzmq-dev
+  libsqlite3-dev sqlite3
   libgtest-dev libgmock-dev libbenchmark-dev
   clang-format
   clang-14 libclang-rt-14-dev

@@ -19,6 +19,10 @@ namespace animat {
 // (a stored run replays only if they stay): never renumber, only append.
 enum class StreamPurpose : uint32_t {
   kRandomGenome = 1,  // Initial genomes (MODEL §9).
+  kSelection = 2,     // Tournaments choosing an offspring's parents.
+  kVariation = 3,     // Whether an offspring is made by crossover.
+  kCrossover = 4,     // Crossover points.
+  kMutation = 5,      // Mutations of an offspring's genome.
 };
 
 // One Philox4x32-10 block: 4 output words for a 128-bit counter and a

@@ -83,6 +83,10 @@ uint64_t ConfigHash(const v1::Config& config) {
   return Fingerprint(Deterministic(config));
 }
 
+uint64_t MessageHash(const google::protobuf::MessageLite& message) {
+  return Fingerprint(Deterministic(message));
+}
+
 uint64_t GenomeHash(const v1::Genome& genome) {
   return Fingerprint(Deterministic(genome));
 }

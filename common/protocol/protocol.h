@@ -13,6 +13,8 @@
 #include <string>
 #include <string_view>
 
+#include <google/protobuf/message_lite.h>
+
 #include "animat/v1/config.pb.h"
 #include "animat/v1/genome.pb.h"
 #include "animat/v1/protocol.pb.h"
@@ -72,6 +74,8 @@ Status ValidateResult(const v1::EvaluationResult& result);
 // config a session runs with, the genome an individual carries.
 uint64_t ConfigHash(const v1::Config& config);
 uint64_t GenomeHash(const v1::Genome& genome);
+// The same for any message.
+uint64_t MessageHash(const google::protobuf::MessageLite& message);
 
 // "hello", "work", ... for log lines; "none" without a body.
 const char* BodyName(const v1::Envelope& envelope);

@@ -1,0 +1,143 @@
+// animat lineage best|ancestors ID|genome ID -o FILE|export --format alife
+//   --db FILE [--run R]
+//
+// Questions about a lineage store (docs/lineage.md). Read-only: it can run
+// while a master writes.
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "cli/commands.h"
+#include "common/io/proto_file.h"
+#include "master/lineage/queries.h"
+
+namespace animat::cli {
+namespace {
+
+struct Options {
+  std::string db;
+  std::optional<int64_t> run;
+  uint64_t id = 0;
+  std::string output = "-";
+  std::string format = "alife";
+};
+
+std::string FitnessText(const std::optional<double>& fitness) {
+  if (!fitness) return "-";
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.17g", *fitness);
+  return text;
+}
+
+template <typename Body>
+int WithRun(const Options& o, Body body) {
+  Result<std::unique_ptr<lineage::Store>> store =
+      lineage::Store::OpenForQueries(o.db);
+  if (!store.ok()) return Fail(store.status().message());
+  Result<int64_t> run = lineage::ChooseRun(**store, o.run);
+  if (!run.ok()) return Fail(run.status().message());
+  return body(**store, *run);
+}
+
+int Best(const Options& o) {
+  return WithRun(o, [&](lineage::Store& store, int64_t run) {
+    Result<lineage::Summary> best = lineage::Best(store, run);
+    if (!best.ok()) return Fail(best.status().message());
+    std::printf("id: %llu\ngeneration: %d\nfitness: %s\noperators: %s\n",
+                static_cast<unsigned long long>(best->id), best->generation,
+                FitnessText(best->fitness).c_str(), best->operators.c_str());
+    return 0;
+  });
+}
+
+int Ancestors(const Options& o) {
+  return WithRun(o, [&](lineage::Store& store, int64_t run) {
+    Result<std::vector<lineage::Summary>> ancestors =
+        lineage::Ancestors(store, run, o.id);
+    if (!ancestors.ok()) return Fail(ancestors.status().message());
+    std::printf("distance,id,generation,fitness,status,operators\n");
+    for (const lineage::Summary& a : *ancestors) {
+      std::printf("%d,%llu,%d,%s,%s,\"%s\"\n", a.distance,
+                  static_cast<unsigned long long>(a.id), a.generation,
+                  a.fitness ? FitnessText(a.fitness).c_str() : "",
+                  a.status.c_str(), a.operators.c_str());
+    }
+    return 0;
+  });
+}
+
+int GenomeOf(const Options& o) {
+  return WithRun(o, [&](lineage::Store& store, int64_t run) {
+    Result<lineage::IndividualRow> row = store.Individual(run, o.id);
+    if (!row.ok()) return Fail(row.status().message());
+    Status status = WriteProtoFile(o.output, row->genome);
+    if (!status.ok()) return Fail(status.message());
+    return 0;
+  });
+}
+
+int Export(const Options& o) {
+  if (o.format != "alife") {
+    return Fail("--format: only alife (the ALife data standard) is known");
+  }
+  return WithRun(o, [&](lineage::Store& store, int64_t run) {
+    Status status;
+    if (o.output == "-") {
+      status = lineage::ExportAlife(store, run, std::cout);
+    } else {
+      std::ofstream out(o.output);
+      if (!out) return Fail(o.output + ": cannot write");
+      status = lineage::ExportAlife(store, run, out);
+    }
+    if (!status.ok()) return Fail(status.message());
+    return 0;
+  });
+}
+
+}  // namespace
+
+Command AddLineageCommand(CLI::App& app) {
+  auto o = std::make_shared<Options>();
+  CLI::App* lineage = app.add_subcommand(
+      "lineage", "Ask a lineage store about a run (docs/lineage.md)");
+  lineage->require_subcommand(1);
+  auto common = [&](CLI::App* sub) {
+    sub->add_option("--db", o->db, "The lineage store")->required();
+    sub->add_option("--run", o->run, "Which run (default: the latest)");
+  };
+  CLI::App* best = lineage->add_subcommand(
+      "best", "The individual with the highest fitness");
+  common(best);
+  CLI::App* ancestors = lineage->add_subcommand(
+      "ancestors", "Every ancestor of an individual, nearest first (CSV)");
+  common(ancestors);
+  ancestors->add_option("id", o->id, "The individual")->required();
+  CLI::App* genome = lineage->add_subcommand(
+      "genome", "Write an individual's genome (for animat simulate)");
+  common(genome);
+  genome->add_option("id", o->id, "The individual")->required();
+  genome
+      ->add_option("-o,--output", o->output,
+                   "Output file: .json, .txtpb or .binpb; - for JSON")
+      ->required();
+  CLI::App* export_command = lineage->add_subcommand(
+      "export", "The whole phylogeny as ALife-standard CSV");
+  common(export_command);
+  export_command->add_option("--format", o->format, "alife")
+      ->capture_default_str();
+  export_command
+      ->add_option("-o,--output", o->output,
+                   "Output file; - for standard output")
+      ->capture_default_str();
+  return [o, best, ancestors, genome] {
+    if (best->parsed()) return Best(*o);
+    if (ancestors->parsed()) return Ancestors(*o);
+    if (genome->parsed()) return GenomeOf(*o);
+    return Export(*o);
+  };
+}
+
+}  // namespace animat::cli

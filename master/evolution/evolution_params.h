@@ -1,0 +1,61 @@
+// The genetic algorithm's settings (MODEL §9) and the run configuration
+// that pairs them with the model's (animat.v1.RunConfig).
+#ifndef ANIMAT_MASTER_EVOLUTION_EVOLUTION_PARAMS_H_
+#define ANIMAT_MASTER_EVOLUTION_EVOLUTION_PARAMS_H_
+
+#include <cstdint>
+#include <string>
+
+#include "animat/v1/evolution.pb.h"
+#include "common/base/status.h"
+#include "common/evaluation/model_config.h"
+
+namespace animat {
+
+// Defaults and their reasons: docs/evolution.md.
+struct MutationParams {
+  double type_rate = 0.01;         // Per element.
+  double sign_rate = 0.01;         // Per element.
+  double coordinate_rate = 0.05;   // Per element.
+  double coordinate_sigma = 0.5;   // Normal step per axis.
+  double duplication_rate = 0.05;  // Per genome.
+  double deletion_rate = 0.05;     // Per genome.
+  int max_run_length = 4;          // Runs of [1, max_run_length] elements.
+};
+
+struct EvolutionParams {
+  uint64_t seed = 1;
+  int population = 300;
+  int generations = 100;
+  int elite = 3;
+  int tournament_size = 3;
+  double crossover_fraction = 0.2;
+  int crossover_points = 2;
+  MutationParams mutation;
+  int initial_units = 10;
+  double initial_min_fitness = 1e-6;
+  int max_elements = 1000;
+};
+
+// Overwrites the fields present after checking them all; errors name the
+// field ("evolution.elite: ...") and leave `params` unchanged.
+Status EvolutionParamsFromProto(const v1::EvolutionConfig& message,
+                                EvolutionParams* params);
+// Every field set.
+v1::EvolutionConfig EvolutionParamsToProto(const EvolutionParams& params);
+
+struct RunSettings {
+  ModelConfig model;
+  EvolutionParams evolution;
+};
+
+Status RunSettingsFromProto(const v1::RunConfig& message,
+                            RunSettings* settings);
+v1::RunConfig RunSettingsToProto(const RunSettings& settings);
+// Reads a run configuration (.json or .txtpb) over the defaults; errors
+// start with the path.
+Result<RunSettings> ReadRunConfigFile(const std::string& path);
+
+}  // namespace animat
+
+#endif  // ANIMAT_MASTER_EVOLUTION_EVOLUTION_PARAMS_H_

@@ -1,0 +1,150 @@
+#include "master/lineage/schema.h"
+
+#include <string>
+
+namespace animat::lineage {
+namespace {
+
+// Migration k brings a store from version k to k + 1. Never edit a
+// migration that has shipped: append a new one.
+constexpr const char* kMigrations[] = {
+    // 0 -> 1: the first schema.
+    R"sql(
+CREATE TABLE runs (
+  run_id       INTEGER PRIMARY KEY,
+  seed         INTEGER NOT NULL,
+  config       BLOB    NOT NULL,  -- animat.v1.RunConfig, binary protobuf
+  config_text  TEXT    NOT NULL,  -- the same in proto text format
+  config_hash  TEXT    NOT NULL,  -- 16 hex digits
+  build_id     TEXT    NOT NULL,  -- the simulator build that evaluates
+  started_at   TEXT    NOT NULL,  -- UTC, ISO 8601
+  ended_at     TEXT,
+  state        TEXT    NOT NULL CHECK (state IN ('running', 'finished'))
+);
+
+CREATE TABLE individuals (
+  run_id       INTEGER NOT NULL REFERENCES runs (run_id),
+  id           INTEGER NOT NULL,
+  generation   INTEGER NOT NULL,  -- the generation it was made for
+  operators    TEXT    NOT NULL,  -- comma-separated, e.g. 'crossover,sign'
+  genome       BLOB    NOT NULL,  -- animat.v1.Genome, binary protobuf
+  genome_hash  TEXT    NOT NULL,  -- 16 hex digits
+  elements     INTEGER NOT NULL,
+  created_at   TEXT    NOT NULL,
+  -- The evaluation: all NULL until it comes back.
+  status       TEXT,              -- 'ok', 'non_viable', ...
+  reason       TEXT,              -- why, when status is not 'ok'
+  fitness      REAL,              -- only when status = 'ok'
+  cells        INTEGER,
+  steps        INTEGER,
+  wall_seconds REAL,
+  worker       TEXT,              -- host:pid
+  state_hash   TEXT,              -- 16 hex digits
+  evaluated_at TEXT,
+  PRIMARY KEY (run_id, id)
+) WITHOUT ROWID;
+CREATE INDEX individuals_to_evaluate ON individuals (run_id, id)
+  WHERE status IS NULL;
+
+CREATE TABLE parents (
+  run_id       INTEGER NOT NULL,
+  child        INTEGER NOT NULL,
+  position     INTEGER NOT NULL,  -- 0: the first (or only) parent
+  parent       INTEGER NOT NULL,
+  PRIMARY KEY (run_id, child, position)
+) WITHOUT ROWID;
+CREATE INDEX parents_by_parent ON parents (run_id, parent);
+
+CREATE TABLE generations (
+  run_id         INTEGER NOT NULL REFERENCES runs (run_id),
+  generation     INTEGER NOT NULL,
+  size           INTEGER NOT NULL,
+  created_at     TEXT    NOT NULL,
+  completed_at   TEXT,             -- NULL while evaluations are pending
+  evaluated      INTEGER,          -- members with status 'ok'
+  failed         INTEGER,          -- members with another status
+  best_id        INTEGER,
+  best_fitness   REAL,
+  mean_fitness   REAL,             -- over members with status 'ok'
+  median_fitness REAL,
+  PRIMARY KEY (run_id, generation)
+) WITHOUT ROWID;
+
+CREATE TABLE members (
+  run_id       INTEGER NOT NULL,
+  generation   INTEGER NOT NULL,
+  id           INTEGER NOT NULL,
+  rank         INTEGER,           -- 0 = best; set when the generation completes
+  PRIMARY KEY (run_id, generation, id)
+) WITHOUT ROWID;
+
+CREATE VIEW generation_statistics AS
+  SELECT run_id, generation, size, evaluated, failed, best_id, best_fitness,
+         mean_fitness, median_fitness, created_at, completed_at
+  FROM generations;
+
+CREATE VIEW best AS
+  SELECT run_id, id, generation, fitness FROM (
+    SELECT run_id, id, generation, fitness,
+           ROW_NUMBER() OVER (PARTITION BY run_id
+                              ORDER BY fitness DESC, id) AS place
+    FROM individuals WHERE status = 'ok')
+  WHERE place = 1;
+
+CREATE VIEW ancestry AS
+  WITH RECURSIVE up (run_id, descendant, ancestor, distance) AS (
+    SELECT run_id, child, parent, 1 FROM parents
+    UNION
+    SELECT up.run_id, up.descendant, p.parent, up.distance + 1
+    FROM up JOIN parents p ON p.run_id = up.run_id AND p.child = up.ancestor)
+  SELECT run_id, descendant, ancestor, MIN(distance) AS distance
+  FROM up GROUP BY run_id, descendant, ancestor;
+
+CREATE VIEW line_of_descent AS
+  WITH RECURSIVE line (run_id, id, step) AS (
+    SELECT run_id, id, 0 FROM best
+    UNION ALL
+    SELECT line.run_id, p.parent, line.step + 1
+    FROM line JOIN parents p
+      ON p.run_id = line.run_id AND p.child = line.id AND p.position = 0)
+  SELECT line.run_id, line.step, i.id, i.generation, i.operators, i.fitness
+  FROM line JOIN individuals i ON i.run_id = line.run_id AND i.id = line.id;
+)sql",
+};
+
+constexpr int kKnown = static_cast<int>(std::size(kMigrations));
+static_assert(kKnown == kSchemaVersion, "one migration per version");
+
+Result<int> UserVersion(sql::Database& db) {
+  Result<sql::Statement> statement = db.Prepare("PRAGMA user_version");
+  if (!statement.ok()) return statement.status();
+  Result<bool> row = statement->Step();
+  if (!row.ok()) return row.status();
+  return static_cast<int>(statement->Int(0));
+}
+
+}  // namespace
+
+Status Migrate(sql::Database& db) {
+  Result<int> version = UserVersion(db);
+  if (!version.ok()) return version.status();
+  if (*version > kSchemaVersion) {
+    return Status::InvalidArgument(
+        db.path() + ": lineage schema version " + std::to_string(*version) +
+        " was written by a newer animat; this build knows up to " +
+        std::to_string(kSchemaVersion));
+  }
+  for (int v = *version; v < kSchemaVersion; ++v) {
+    Status status = db.Execute(
+        std::string("BEGIN IMMEDIATE;") + kMigrations[v] +
+        "PRAGMA user_version = " + std::to_string(v + 1) + ";COMMIT;");
+    if (!status.ok()) {
+      (void)db.Execute("ROLLBACK");
+      return status.WithPrefix("migration to schema version " +
+                               std::to_string(v + 1));
+    }
+  }
+  return Status::Ok();
+}
+
+}  // namespace animat::lineage

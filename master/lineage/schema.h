@@ -1,0 +1,21 @@
+// The lineage store's schema, its version, and the migrations that bring an
+// older store up to date (docs/lineage.md describes every table and view).
+#ifndef ANIMAT_MASTER_LINEAGE_SCHEMA_H_
+#define ANIMAT_MASTER_LINEAGE_SCHEMA_H_
+
+#include "common/base/status.h"
+#include "master/lineage/sqlite.h"
+
+namespace animat::lineage {
+
+// The schema this build writes (PRAGMA user_version).
+inline constexpr int kSchemaVersion = 1;
+
+// Brings `db` from its user_version to kSchemaVersion, one migration at a
+// time, each in its own transaction. Refuses a store written by a newer
+// build (a higher version), saying both versions.
+Status Migrate(sql::Database& db);
+
+}  // namespace animat::lineage
+
+#endif  // ANIMAT_MASTER_LINEAGE_SCHEMA_H_

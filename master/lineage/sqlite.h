@@ -1,0 +1,86 @@
+// A thin RAII layer over SQLite's C API: a connection and prepared
+// statements whose failures come back as Status values naming the SQL.
+//
+// Not thread-safe: one thread uses a Database and its statements.
+#ifndef ANIMAT_MASTER_LINEAGE_SQLITE_H_
+#define ANIMAT_MASTER_LINEAGE_SQLITE_H_
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "common/base/status.h"
+
+struct sqlite3;
+struct sqlite3_stmt;
+
+namespace animat::sql {
+
+class Statement;
+
+class Database {
+ public:
+  // Opens or creates the database file ("" or ":memory:" for a private
+  // in-memory one); with `read_only`, opens an existing file for reading.
+  static Result<std::unique_ptr<Database>> Open(const std::string& path,
+                                                bool read_only = false);
+  ~Database();
+  Database(const Database&) = delete;
+  Database& operator=(const Database&) = delete;
+
+  // Runs one or more statements without results.
+  Status Execute(std::string_view sql);
+  // Prepares one statement; the Database must outlive it.
+  Result<Statement> Prepare(std::string_view sql);
+
+  int64_t last_insert_rowid() const;
+  const std::string& path() const { return path_; }
+  sqlite3* handle() { return db_; }
+
+ private:
+  Database(sqlite3* db, std::string path) : db_(db), path_(std::move(path)) {}
+  sqlite3* db_;
+  std::string path_;
+};
+
+// A prepared statement: bind (1-based), step, read columns (0-based).
+class Statement {
+ public:
+  Statement(Statement&& other) noexcept;
+  Statement& operator=(Statement&& other) noexcept;
+  ~Statement();
+
+  Statement& Bind(int index, int64_t value);
+  Statement& Bind(int index, double value);
+  Statement& Bind(int index, std::string_view text);
+  Statement& BindBlob(int index, std::string_view bytes);
+  Statement& BindNull(int index);
+  Statement& Bind(int index, std::optional<double> value);
+
+  // Steps once: true with a row to read, false when done. Errors name the
+  // statement's SQL.
+  Result<bool> Step();
+  // Steps to completion (for statements without rows) and resets.
+  Status Run();
+  // Ready for new bindings and steps.
+  void Reset();
+
+  bool IsNull(int column) const;
+  int64_t Int(int column) const;
+  double Double(int column) const;
+  std::string Text(int column) const;
+  std::string Blob(int column) const;
+
+ private:
+  friend class Database;
+  Statement(sqlite3* db, sqlite3_stmt* statement)
+      : db_(db), statement_(statement) {}
+  sqlite3* db_;
+  sqlite3_stmt* statement_;
+};
+
+}  // namespace animat::sql
+
+#endif  // ANIMAT_MASTER_LINEAGE_SQLITE_H_

@@ -1,0 +1,527 @@
+#include "master/lineage/store.h"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+
+#include <google/protobuf/text_format.h>
+
+#include "common/protocol/protocol.h"
+#include "master/lineage/schema.h"
+
+namespace animat::lineage {
+namespace {
+
+std::string Join(const std::vector<std::string>& parts) {
+  std::string out;
+  for (const std::string& part : parts) {
+    if (!out.empty()) out += ",";
+    out += part;
+  }
+  return out;
+}
+
+// Runs `body` inside BEGIN IMMEDIATE ... COMMIT, rolling back on failure.
+template <typename Body>
+Status InTransaction(sql::Database& db, Body body) {
+  Status status = db.Execute("BEGIN IMMEDIATE");
+  if (!status.ok()) return status;
+  status = body();
+  if (status.ok()) status = db.Execute("COMMIT");
+  if (!status.ok()) (void)db.Execute("ROLLBACK");
+  return status;
+}
+
+}  // namespace
+
+std::string UtcNow() {
+  const auto now = std::chrono::system_clock::now();
+  const std::time_t seconds = std::chrono::system_clock::to_time_t(now);
+  const int millis =
+      static_cast<int>(std::chrono::duration_cast<std::chrono::milliseconds>(
+                           now.time_since_epoch())
+                           .count() %
+                       1000);
+  std::tm utc;
+  gmtime_r(&seconds, &utc);
+  char stamp[96];
+  std::snprintf(stamp, sizeof(stamp), "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ",
+                utc.tm_year + 1900, utc.tm_mon + 1, utc.tm_mday, utc.tm_hour,
+                utc.tm_min, utc.tm_sec, millis);
+  return stamp;
+}
+
+std::string Hex64(uint64_t value) {
+  char text[17];
+  std::snprintf(text, sizeof(text), "%016llx",
+                static_cast<unsigned long long>(value));
+  return text;
+}
+
+Result<std::unique_ptr<Store>> Store::Open(const std::string& path) {
+  int lock_fd = -1;
+  const bool in_memory = path.empty() || path == ":memory:";
+  if (!in_memory) {
+    const std::string lock_path = path + ".lock";
+    lock_fd = open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (lock_fd < 0) {
+      return Status::IoError(lock_path + ": " + std::strerror(errno));
+    }
+    if (flock(lock_fd, LOCK_EX | LOCK_NB) != 0) {
+      close(lock_fd);
+      return Status::IoError(path + ": in use by another master (" + lock_path +
+                             " is locked); only one master may run on a store");
+    }
+  }
+  Result<std::unique_ptr<sql::Database>> db = sql::Database::Open(path);
+  if (!db.ok()) {
+    if (lock_fd >= 0) close(lock_fd);
+    return db.status();
+  }
+  // WAL: readers (queries, exports) never block the master; synchronous
+  // FULL: a commit survives power loss, not only a crash.
+  Status status = (*db)->Execute(
+      "PRAGMA journal_mode = WAL; PRAGMA synchronous = FULL;"
+      "PRAGMA foreign_keys = ON;");
+  if (status.ok()) status = Migrate(**db);
+  if (!status.ok()) {
+    if (lock_fd >= 0) close(lock_fd);
+    return status;
+  }
+  return std::unique_ptr<Store>(new Store(std::move(db).value(), lock_fd));
+}
+
+Result<std::unique_ptr<Store>> Store::OpenForQueries(const std::string& path) {
+  if (access(path.c_str(), R_OK) != 0) {
+    return Status::NotFound(path + ": no such lineage store");
+  }
+  Result<std::unique_ptr<sql::Database>> db =
+      sql::Database::Open(path, /*read_only=*/true);
+  if (!db.ok()) return db.status();
+  Result<sql::Statement> version = (*db)->Prepare("PRAGMA user_version");
+  if (!version.ok()) return version.status();
+  Result<bool> row = version->Step();
+  if (!row.ok()) return row.status();
+  const int found = static_cast<int>(version->Int(0));
+  if (found != kSchemaVersion) {
+    return Status::InvalidArgument(
+        path + ": lineage schema version " + std::to_string(found) +
+        ", this build reads version " + std::to_string(kSchemaVersion) +
+        (found < kSchemaVersion ? " (a master of this build upgrades it)"
+                                : " (written by a newer animat)"));
+  }
+  return std::unique_ptr<Store>(new Store(std::move(db).value(), -1));
+}
+
+Store::~Store() {
+  db_.reset();
+  if (lock_fd_ >= 0) close(lock_fd_);  // Releases the lock.
+}
+
+Result<int64_t> Store::CreateRun(uint64_t seed, const v1::RunConfig& config,
+                                 const std::string& build_id) {
+  std::string text;
+  google::protobuf::TextFormat::PrintToString(config, &text);
+  Result<sql::Statement> insert = db_->Prepare(
+      "INSERT INTO runs (seed, config, config_text, config_hash, build_id,"
+      " started_at, state) VALUES (?, ?, ?, ?, ?, ?, 'running')");
+  if (!insert.ok()) return insert.status();
+  insert->Bind(1, static_cast<int64_t>(seed))
+      .BindBlob(2, config.SerializeAsString())
+      .Bind(3, text)
+      .Bind(4, Hex64(protocol::MessageHash(config)))
+      .Bind(5, build_id)
+      .Bind(6, UtcNow());
+  Status status = insert->Run();
+  if (!status.ok()) return status;
+  return db_->last_insert_rowid();
+}
+
+Result<std::vector<RunRow>> Store::Runs() {
+  Result<sql::Statement> select = db_->Prepare(
+      "SELECT run_id, seed, config, config_hash, build_id, started_at,"
+      " ended_at, state FROM runs ORDER BY run_id");
+  if (!select.ok()) return select.status();
+  std::vector<RunRow> runs;
+  for (;;) {
+    Result<bool> row = select->Step();
+    if (!row.ok()) return row.status();
+    if (!*row) break;
+    RunRow run;
+    run.run_id = select->Int(0);
+    run.seed = static_cast<uint64_t>(select->Int(1));
+    if (!run.config.ParseFromString(select->Blob(2))) {
+      return Status::InvalidArgument(db_->path() + ": run " +
+                                     std::to_string(run.run_id) +
+                                     " has an unreadable configuration");
+    }
+    run.config_hash = select->Text(3);
+    run.build_id = select->Text(4);
+    run.started_at = select->Text(5);
+    run.ended_at = select->IsNull(6) ? "" : select->Text(6);
+    run.state = select->Text(7);
+    runs.push_back(std::move(run));
+  }
+  return runs;
+}
+
+Status Store::FinishRun(int64_t run) {
+  Result<sql::Statement> update = db_->Prepare(
+      "UPDATE runs SET state = 'finished', ended_at = ? WHERE run_id = ?");
+  if (!update.ok()) return update.status();
+  update->Bind(1, UtcNow()).Bind(2, run);
+  return update->Run();
+}
+
+Status Store::UpdateRunConfig(int64_t run, const v1::RunConfig& config) {
+  std::string text;
+  google::protobuf::TextFormat::PrintToString(config, &text);
+  Result<sql::Statement> update = db_->Prepare(
+      "UPDATE runs SET config = ?, config_text = ?, config_hash = ?,"
+      " state = 'running', ended_at = NULL WHERE run_id = ?");
+  if (!update.ok()) return update.status();
+  update->BindBlob(1, config.SerializeAsString())
+      .Bind(2, text)
+      .Bind(3, Hex64(protocol::MessageHash(config)))
+      .Bind(4, run);
+  return update->Run();
+}
+
+Status Store::InsertIndividuals(int64_t run,
+                                const std::vector<NewIndividual>& batch) {
+  Result<sql::Statement> individual = db_->Prepare(
+      "INSERT INTO individuals (run_id, id, generation, operators, genome,"
+      " genome_hash, elements, created_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
+  if (!individual.ok()) return individual.status();
+  Result<sql::Statement> parent = db_->Prepare(
+      "INSERT INTO parents (run_id, child, position, parent)"
+      " VALUES (?, ?, ?, ?)");
+  if (!parent.ok()) return parent.status();
+  const std::string now = UtcNow();
+  for (const NewIndividual& n : batch) {
+    individual->Bind(1, run)
+        .Bind(2, static_cast<int64_t>(n.id))
+        .Bind(3, static_cast<int64_t>(n.generation))
+        .Bind(4, Join(n.operators))
+        .BindBlob(5, n.genome.SerializeAsString())
+        .Bind(6, Hex64(protocol::GenomeHash(n.genome)))
+        .Bind(7, static_cast<int64_t>(n.genome.elements_size()))
+        .Bind(8, now);
+    Status status = individual->Run();
+    if (!status.ok()) return status;
+    for (size_t k = 0; k < n.parents.size(); ++k) {
+      parent->Bind(1, run)
+          .Bind(2, static_cast<int64_t>(n.id))
+          .Bind(3, static_cast<int64_t>(k))
+          .Bind(4, static_cast<int64_t>(n.parents[k]));
+      status = parent->Run();
+      if (!status.ok()) return status;
+    }
+  }
+  return Status::Ok();
+}
+
+Status Store::AddIndividuals(int64_t run,
+                             const std::vector<NewIndividual>& batch) {
+  return InTransaction(*db_, [&] { return InsertIndividuals(run, batch); });
+}
+
+Status Store::RecordEvaluations(int64_t run,
+                                const std::vector<Evaluation>& batch) {
+  return InTransaction(*db_, [&]() -> Status {
+    Result<sql::Statement> update = db_->Prepare(
+        "UPDATE individuals SET status = ?, reason = ?, fitness = ?,"
+        " cells = ?, steps = ?, wall_seconds = ?, worker = ?,"
+        " state_hash = ?, evaluated_at = ?"
+        " WHERE run_id = ? AND id = ? AND status IS NULL");
+    if (!update.ok()) return update.status();
+    const std::string now = UtcNow();
+    for (const Evaluation& e : batch) {
+      const v1::EvaluationResult& r = e.result;
+      std::string status = v1::EvaluationResult::Status_Name(r.status());
+      for (char& c : status) c = static_cast<char>(std::tolower(c));
+      update->Bind(1, status)
+          .Bind(2, r.reason())
+          .Bind(3, r.has_fitness() ? std::optional<double>(r.fitness())
+                                   : std::nullopt)
+          .Bind(4, static_cast<int64_t>(r.cells()))
+          .Bind(5, static_cast<int64_t>(r.steps()))
+          .Bind(6, e.wall_seconds)
+          .Bind(7, e.worker)
+          .Bind(8, Hex64(r.state_hash()))
+          .Bind(9, now)
+          .Bind(10, run)
+          .Bind(11, static_cast<int64_t>(e.id));
+      Status s = update->Run();
+      if (!s.ok()) return s;
+    }
+    return Status::Ok();
+  });
+}
+
+namespace {
+
+Result<std::vector<uint64_t>> ParentsOf(sql::Database& db, int64_t run,
+                                        uint64_t id) {
+  Result<sql::Statement> select = db.Prepare(
+      "SELECT parent FROM parents WHERE run_id = ? AND child = ?"
+      " ORDER BY position");
+  if (!select.ok()) return select.status();
+  select->Bind(1, run).Bind(2, static_cast<int64_t>(id));
+  std::vector<uint64_t> parents;
+  for (;;) {
+    Result<bool> row = select->Step();
+    if (!row.ok()) return row.status();
+    if (!*row) break;
+    parents.push_back(static_cast<uint64_t>(select->Int(0)));
+  }
+  return parents;
+}
+
+constexpr const char* kIndividualColumns =
+    "SELECT id, generation, operators, genome, status, reason, fitness"
+    " FROM individuals";
+
+Status ReadIndividual(sql::Database& db, const sql::Statement& row, int64_t run,
+                      IndividualRow* out) {
+  out->id = static_cast<uint64_t>(row.Int(0));
+  out->generation = static_cast<int>(row.Int(1));
+  out->operators = row.Text(2);
+  if (!out->genome.ParseFromString(row.Blob(3))) {
+    return Status::InvalidArgument(db.path() + ": individual " +
+                                   std::to_string(out->id) +
+                                   " has an unreadable genome");
+  }
+  out->evaluated = !row.IsNull(4);
+  out->status = out->evaluated ? row.Text(4) : "";
+  out->reason = row.IsNull(5) ? "" : row.Text(5);
+  if (!row.IsNull(6)) out->fitness = row.Double(6);
+  Result<std::vector<uint64_t>> parents = ParentsOf(db, run, out->id);
+  if (!parents.ok()) return parents.status();
+  out->parents = std::move(parents).value();
+  return Status::Ok();
+}
+
+}  // namespace
+
+Result<IndividualRow> Store::Individual(int64_t run, uint64_t id) {
+  Result<sql::Statement> select = db_->Prepare(std::string(kIndividualColumns) +
+                                               " WHERE run_id = ? AND id = ?");
+  if (!select.ok()) return select.status();
+  select->Bind(1, run).Bind(2, static_cast<int64_t>(id));
+  Result<bool> row = select->Step();
+  if (!row.ok()) return row.status();
+  if (!*row) {
+    return Status::NotFound("no individual " + std::to_string(id) + " in run " +
+                            std::to_string(run));
+  }
+  IndividualRow out;
+  Status status = ReadIndividual(*db_, *select, run, &out);
+  if (!status.ok()) return status;
+  return out;
+}
+
+Result<std::vector<IndividualRow>> Store::IndividualsOf(int64_t run,
+                                                        int generation) {
+  Result<sql::Statement> select =
+      db_->Prepare(std::string(kIndividualColumns) +
+                   " WHERE run_id = ? AND generation = ? ORDER BY id");
+  if (!select.ok()) return select.status();
+  select->Bind(1, run).Bind(2, static_cast<int64_t>(generation));
+  std::vector<IndividualRow> out;
+  for (;;) {
+    Result<bool> row = select->Step();
+    if (!row.ok()) return row.status();
+    if (!*row) break;
+    IndividualRow individual;
+    Status status = ReadIndividual(*db_, *select, run, &individual);
+    if (!status.ok()) return status;
+    out.push_back(std::move(individual));
+  }
+  return out;
+}
+
+namespace {
+
+Result<std::vector<Score>> ReadScores(sql::Statement& select) {
+  std::vector<Score> scores;
+  for (;;) {
+    Result<bool> row = select.Step();
+    if (!row.ok()) return row.status();
+    if (!*row) break;
+    Score score;
+    score.id = static_cast<uint64_t>(select.Int(0));
+    score.evaluated = !select.IsNull(1);
+    if (!select.IsNull(2)) score.fitness = select.Double(2);
+    scores.push_back(score);
+  }
+  return scores;
+}
+
+}  // namespace
+
+Result<std::vector<Score>> Store::ScoresOf(int64_t run, int generation) {
+  Result<sql::Statement> select = db_->Prepare(
+      "SELECT id, status, fitness FROM individuals"
+      " WHERE run_id = ? AND generation = ? ORDER BY id");
+  if (!select.ok()) return select.status();
+  select->Bind(1, run).Bind(2, static_cast<int64_t>(generation));
+  return ReadScores(*select);
+}
+
+Result<std::vector<Score>> Store::MemberScores(int64_t run, int generation) {
+  Result<sql::Statement> select = db_->Prepare(
+      "SELECT i.id, i.status, i.fitness FROM members m JOIN individuals i"
+      " ON i.run_id = m.run_id AND i.id = m.id"
+      " WHERE m.run_id = ? AND m.generation = ? ORDER BY i.id");
+  if (!select.ok()) return select.status();
+  select->Bind(1, run).Bind(2, static_cast<int64_t>(generation));
+  return ReadScores(*select);
+}
+
+Result<std::vector<uint64_t>> Store::Unevaluated(int64_t run) {
+  Result<sql::Statement> select = db_->Prepare(
+      "SELECT id FROM individuals WHERE run_id = ? AND status IS NULL"
+      " ORDER BY id");
+  if (!select.ok()) return select.status();
+  select->Bind(1, run);
+  std::vector<uint64_t> ids;
+  for (;;) {
+    Result<bool> row = select->Step();
+    if (!row.ok()) return row.status();
+    if (!*row) break;
+    ids.push_back(static_cast<uint64_t>(select->Int(0)));
+  }
+  return ids;
+}
+
+Result<uint64_t> Store::NextId(int64_t run) {
+  Result<sql::Statement> select =
+      db_->Prepare("SELECT MAX(id) FROM individuals WHERE run_id = ?");
+  if (!select.ok()) return select.status();
+  select->Bind(1, run);
+  Result<bool> row = select->Step();
+  if (!row.ok()) return row.status();
+  if (!*row || select->IsNull(0)) return uint64_t{0};
+  return static_cast<uint64_t>(select->Int(0)) + 1;
+}
+
+Status Store::AddGeneration(int64_t run, int generation,
+                            const std::vector<uint64_t>& members,
+                            const std::vector<NewIndividual>& individuals) {
+  return InTransaction(*db_, [&]() -> Status {
+    Status status = InsertIndividuals(run, individuals);
+    if (!status.ok()) return status;
+    Result<sql::Statement> insert = db_->Prepare(
+        "INSERT INTO generations (run_id, generation, size, created_at)"
+        " VALUES (?, ?, ?, ?)");
+    if (!insert.ok()) return insert.status();
+    insert->Bind(1, run)
+        .Bind(2, static_cast<int64_t>(generation))
+        .Bind(3, static_cast<int64_t>(members.size()))
+        .Bind(4, UtcNow());
+    status = insert->Run();
+    if (!status.ok()) return status;
+    Result<sql::Statement> member = db_->Prepare(
+        "INSERT INTO members (run_id, generation, id) VALUES (?, ?, ?)");
+    if (!member.ok()) return member.status();
+    for (uint64_t id : members) {
+      member->Bind(1, run)
+          .Bind(2, static_cast<int64_t>(generation))
+          .Bind(3, static_cast<int64_t>(id));
+      status = member->Run();
+      if (!status.ok()) return status;
+    }
+    return Status::Ok();
+  });
+}
+
+Status Store::CompleteGeneration(int64_t run, int generation,
+                                 const std::vector<uint64_t>& ranked,
+                                 const GenerationStats& stats) {
+  return InTransaction(*db_, [&]() -> Status {
+    Result<sql::Statement> rank = db_->Prepare(
+        "UPDATE members SET rank = ? WHERE run_id = ? AND generation = ?"
+        " AND id = ?");
+    if (!rank.ok()) return rank.status();
+    for (size_t r = 0; r < ranked.size(); ++r) {
+      rank->Bind(1, static_cast<int64_t>(r))
+          .Bind(2, run)
+          .Bind(3, static_cast<int64_t>(generation))
+          .Bind(4, static_cast<int64_t>(ranked[r]));
+      Status status = rank->Run();
+      if (!status.ok()) return status;
+    }
+    Result<sql::Statement> update = db_->Prepare(
+        "UPDATE generations SET completed_at = ?, evaluated = ?, failed = ?,"
+        " best_id = ?, best_fitness = ?, mean_fitness = ?,"
+        " median_fitness = ? WHERE run_id = ? AND generation = ?");
+    if (!update.ok()) return update.status();
+    update->Bind(1, UtcNow())
+        .Bind(2, static_cast<int64_t>(stats.evaluated))
+        .Bind(3, static_cast<int64_t>(stats.failed));
+    if (stats.best_id) {
+      update->Bind(4, static_cast<int64_t>(*stats.best_id));
+    } else {
+      update->BindNull(4);
+    }
+    update->Bind(5, stats.best)
+        .Bind(6, stats.mean)
+        .Bind(7, stats.median)
+        .Bind(8, run)
+        .Bind(9, static_cast<int64_t>(generation));
+    return update->Run();
+  });
+}
+
+Result<GenerationRow> Store::Generation(int64_t run, int generation) {
+  Result<sql::Statement> select = db_->Prepare(
+      "SELECT size, completed_at IS NOT NULL FROM generations"
+      " WHERE run_id = ? AND generation = ?");
+  if (!select.ok()) return select.status();
+  select->Bind(1, run).Bind(2, static_cast<int64_t>(generation));
+  Result<bool> row = select->Step();
+  if (!row.ok()) return row.status();
+  if (!*row) {
+    return Status::NotFound("no generation " + std::to_string(generation) +
+                            " in run " + std::to_string(run));
+  }
+  GenerationRow out;
+  out.generation = generation;
+  out.size = static_cast<int>(select->Int(0));
+  out.complete = select->Int(1) != 0;
+  Result<sql::Statement> members = db_->Prepare(
+      "SELECT id FROM members WHERE run_id = ? AND generation = ?"
+      " ORDER BY rank, id");
+  if (!members.ok()) return members.status();
+  members->Bind(1, run).Bind(2, static_cast<int64_t>(generation));
+  for (;;) {
+    Result<bool> member = members->Step();
+    if (!member.ok()) return member.status();
+    if (!*member) break;
+    out.members.push_back(static_cast<uint64_t>(members->Int(0)));
+  }
+  return out;
+}
+
+Result<std::optional<GenerationRow>> Store::LatestGeneration(int64_t run) {
+  Result<sql::Statement> select =
+      db_->Prepare("SELECT MAX(generation) FROM generations WHERE run_id = ?");
+  if (!select.ok()) return select.status();
+  select->Bind(1, run);
+  Result<bool> row = select->Step();
+  if (!row.ok()) return row.status();
+  if (!*row || select->IsNull(0)) return std::optional<GenerationRow>();
+  Result<GenerationRow> generation =
+      Generation(run, static_cast<int>(select->Int(0)));
+  if (!generation.ok()) return generation.status();
+  return std::optional<GenerationRow>(std::move(generation).value());
+}
+
+}  // namespace animat::lineage

@@ -1,0 +1,160 @@
+// The lineage store: every individual a run makes, its parents, how it was
+// made, its genome and its evaluation; runs and generations (SQLite, WAL;
+// schema in schema.cc and docs/lineage.md).
+//
+// Writes are transactions: individuals are committed before their genomes
+// leave the master, results in batches as they arrive, so a crash loses at
+// most the results received since the last commit (they are evaluated
+// again on resume, to the same bits). Opening takes an exclusive lock on
+// "<path>.lock", so two masters never share a store.
+//
+// Not thread-safe: one thread uses a Store.
+#ifndef ANIMAT_MASTER_LINEAGE_STORE_H_
+#define ANIMAT_MASTER_LINEAGE_STORE_H_
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "animat/v1/evolution.pb.h"
+#include "animat/v1/genome.pb.h"
+#include "animat/v1/trace.pb.h"
+#include "common/base/status.h"
+#include "master/lineage/sqlite.h"
+
+namespace animat::lineage {
+
+struct RunRow {
+  int64_t run_id = 0;
+  uint64_t seed = 0;
+  v1::RunConfig config;
+  std::string config_hash;  // 16 hex digits.
+  std::string build_id;
+  std::string started_at;
+  std::string ended_at;  // Empty while running.
+  std::string state;     // "running" or "finished".
+};
+
+// An individual as made, before its evaluation.
+struct NewIndividual {
+  uint64_t id = 0;
+  int generation = 0;
+  std::vector<uint64_t> parents;       // In order; none for random ones.
+  std::vector<std::string> operators;  // E.g. {"crossover", "sign"}.
+  v1::Genome genome;
+};
+
+struct Evaluation {
+  uint64_t id = 0;
+  v1::EvaluationResult result;
+  double wall_seconds = 0;
+  std::string worker;  // host:pid
+};
+
+struct IndividualRow {
+  uint64_t id = 0;
+  int generation = 0;
+  std::vector<uint64_t> parents;
+  std::string operators;
+  v1::Genome genome;
+  bool evaluated = false;
+  std::string status;  // "ok", ...; empty until evaluated.
+  std::string reason;
+  std::optional<double> fitness;  // Only when status is "ok".
+};
+
+// What the run loop needs of an individual's evaluation.
+struct Score {
+  uint64_t id = 0;
+  bool evaluated = false;
+  std::optional<double> fitness;  // Only for status "ok".
+};
+
+struct GenerationRow {
+  int generation = 0;
+  int size = 0;
+  bool complete = false;
+  std::vector<uint64_t> members;  // Ranked (best first) once complete.
+};
+
+struct GenerationStats {
+  int evaluated = 0;  // Members with status "ok".
+  int failed = 0;
+  std::optional<uint64_t> best_id;
+  std::optional<double> best, mean, median;
+};
+
+class Store {
+ public:
+  // Opens or creates the store at `path` ("" or ":memory:" for a private
+  // in-memory store, without a lock file), upgrading an older schema.
+  // Fails, saying so, when another process holds the store's lock.
+  static Result<std::unique_ptr<Store>> Open(const std::string& path);
+  // Opens an existing store for queries only: no lock (a master may be
+  // writing; WAL lets both proceed), no migration. Fails, saying so, when
+  // the file does not exist or its schema is not this build's.
+  static Result<std::unique_ptr<Store>> OpenForQueries(const std::string& path);
+  ~Store();
+
+  // Runs.
+  Result<int64_t> CreateRun(uint64_t seed, const v1::RunConfig& config,
+                            const std::string& build_id);
+  Result<std::vector<RunRow>> Runs();  // Oldest first.
+  Status FinishRun(int64_t run);
+  // Replaces the run's configuration (a run extended to more generations,
+  // or resumed with --force) and marks it running again.
+  Status UpdateRunConfig(int64_t run, const v1::RunConfig& config);
+
+  // Individuals. AddIndividuals writes all of them (and their parents) in
+  // one transaction. RecordEvaluations writes a batch in one transaction;
+  // an individual already evaluated keeps its first evaluation.
+  Status AddIndividuals(int64_t run, const std::vector<NewIndividual>& batch);
+  Status RecordEvaluations(int64_t run, const std::vector<Evaluation>& batch);
+  Result<IndividualRow> Individual(int64_t run, uint64_t id);
+  // Individuals of `generation` in increasing id, evaluated or not.
+  Result<std::vector<IndividualRow>> IndividualsOf(int64_t run, int generation);
+  // The scores of the individuals made for `generation`, in increasing id
+  // (no genomes are read).
+  Result<std::vector<Score>> ScoresOf(int64_t run, int generation);
+  // The scores of the members of `generation`, in increasing id.
+  Result<std::vector<Score>> MemberScores(int64_t run, int generation);
+  // Every individual of the run not yet evaluated, in increasing id.
+  Result<std::vector<uint64_t>> Unevaluated(int64_t run);
+  // One more than the highest id of the run (0 for none).
+  Result<uint64_t> NextId(int64_t run);
+
+  // Generations. AddGeneration records a generation's members; with
+  // `individuals`, those are added in the same transaction (a generation
+  // and the offspring it needs appear together or not at all).
+  Status AddGeneration(int64_t run, int generation,
+                       const std::vector<uint64_t>& members,
+                       const std::vector<NewIndividual>& individuals = {});
+  Status CompleteGeneration(int64_t run, int generation,
+                            const std::vector<uint64_t>& ranked,
+                            const GenerationStats& stats);
+  // The generation with the highest number, if any.
+  Result<std::optional<GenerationRow>> LatestGeneration(int64_t run);
+  Result<GenerationRow> Generation(int64_t run, int generation);
+
+  sql::Database& database() { return *db_; }
+
+ private:
+  Store(std::unique_ptr<sql::Database> db, int lock_fd)
+      : db_(std::move(db)), lock_fd_(lock_fd) {}
+  Status InsertIndividuals(int64_t run,
+                           const std::vector<NewIndividual>& batch);
+
+  std::unique_ptr<sql::Database> db_;
+  int lock_fd_;  // flock()ed "<path>.lock", -1 for in-memory stores.
+};
+
+// "2026-11-21T14:03:07.123Z", now.
+std::string UtcNow();
+// 16 lowercase hex digits.
+std::string Hex64(uint64_t value);
+
+}  // namespace animat::lineage
+
+#endif  // ANIMAT_MASTER_LINEAGE_STORE_H_

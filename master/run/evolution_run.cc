@@ -1,0 +1,353 @@
+#include "master/run/evolution_run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "common/genome/genome_proto.h"
+#include "common/protocol/protocol.h"
+
+namespace animat {
+namespace {
+
+double SteadySeconds() {
+  return std::chrono::duration<double>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+// Results are committed at least this often (and before any decision that
+// reads them back).
+constexpr double kFlushSeconds = 0.2;
+constexpr size_t kFlushCount = 5000;
+
+std::vector<Scored> ToScored(const std::vector<lineage::Score>& scores) {
+  std::vector<Scored> scored;
+  for (const lineage::Score& s : scores) scored.push_back({s.id, s.fitness});
+  return scored;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<EvolutionRun>> EvolutionRun::Start(
+    lineage::Store* store, const RunSettings& settings, LogSink log) {
+  Result<std::vector<lineage::RunRow>> runs = store->Runs();
+  if (!runs.ok()) return runs.status();
+  if (!runs->empty()) {
+    return Status::InvalidArgument(
+        store->database().path() +
+        ": already holds a run; continue it with --resume, or use another "
+        "database");
+  }
+  Result<int64_t> run =
+      store->CreateRun(settings.evolution.seed, RunSettingsToProto(settings),
+                       protocol::BuildId());
+  if (!run.ok()) return run.status();
+  log("run " + std::to_string(*run) + " started, seed " +
+      std::to_string(settings.evolution.seed));
+  return std::unique_ptr<EvolutionRun>(
+      new EvolutionRun(store, settings, *run, std::move(log)));
+}
+
+Result<std::unique_ptr<EvolutionRun>> EvolutionRun::Resume(
+    lineage::Store* store, const std::optional<RunSettings>& settings,
+    bool force, std::optional<int> generations, LogSink log) {
+  Result<std::vector<lineage::RunRow>> runs = store->Runs();
+  if (!runs.ok()) return runs.status();
+  if (runs->empty()) {
+    return Status::NotFound(store->database().path() +
+                            ": no run to resume; start one with --config");
+  }
+  const lineage::RunRow& row = runs->back();
+  RunSettings stored;
+  Status status = RunSettingsFromProto(row.config, &stored);
+  if (!status.ok()) {
+    return status.WithPrefix(store->database().path() +
+                             ": the stored configuration");
+  }
+  // How many generations to run decides no individual: it may change.
+  const auto comparable = [](RunSettings s) {
+    s.evolution.generations = 0;
+    return protocol::MessageHash(RunSettingsToProto(s));
+  };
+  std::vector<std::string> problems;
+  if (settings && comparable(*settings) != comparable(stored)) {
+    problems.push_back("the configuration given differs from the run's");
+  }
+  if (row.build_id != protocol::BuildId()) {
+    problems.push_back("the run was evaluated by build \"" + row.build_id +
+                       "\", this is \"" + protocol::BuildId() +
+                       "\" (results could differ in the last bits)");
+  }
+  if (!problems.empty() && !force) {
+    std::string message = store->database().path() + ": refusing to resume:";
+    for (const std::string& p : problems) message += " " + p + ";";
+    return Status::InvalidArgument(message + " --force resumes anyway");
+  }
+  for (const std::string& p : problems) log("resuming anyway (--force): " + p);
+  RunSettings use = settings && force ? *settings : stored;
+  if (generations) use.evolution.generations = *generations;
+  if (use.evolution.generations != stored.evolution.generations ||
+      problems.size() > 0) {
+    // The run's recorded configuration is what it now runs with.
+    status = store->UpdateRunConfig(row.run_id, RunSettingsToProto(use));
+    if (!status.ok()) return status;
+  }
+  log("resuming run " + std::to_string(row.run_id));
+  return std::unique_ptr<EvolutionRun>(
+      new EvolutionRun(store, use, row.run_id, std::move(log)));
+}
+
+Status EvolutionRun::Submit(const std::vector<lineage::NewIndividual>& made,
+                            Dispatcher* dispatcher) {
+  for (const lineage::NewIndividual& n : made) {
+    dispatcher->Submit(n.id, n.genome);
+  }
+  return Status::Ok();
+}
+
+Status EvolutionRun::Flush() {
+  if (unsaved_.empty()) return Status::Ok();
+  Status status = store_->RecordEvaluations(run_id_, unsaved_);
+  if (status.ok()) unsaved_.clear();
+  return status;
+}
+
+Status EvolutionRun::Run(
+    Dispatcher* dispatcher, const std::atomic<bool>& stop,
+    const std::function<void(const GenerationReport&)>& progress) {
+  started_ = SteadySeconds();
+  // Whatever was made and not evaluated before (a resumed run) goes out
+  // first.
+  Result<std::vector<uint64_t>> pending = store_->Unevaluated(run_id_);
+  if (!pending.ok()) return pending.status();
+  for (uint64_t id : *pending) {
+    Result<lineage::IndividualRow> row = store_->Individual(run_id_, id);
+    if (!row.ok()) return row.status();
+    dispatcher->Submit(id, row->genome);
+  }
+  if (!pending->empty()) {
+    log_(std::to_string(pending->size()) + " evaluations pending");
+  }
+  Status status = Advance(dispatcher, progress);
+  double last_flush = SteadySeconds();
+  while (status.ok() && !finished_ && !stop.load()) {
+    for (Completion& c : dispatcher->Poll(100)) {
+      lineage::Evaluation e;
+      e.id = c.individual;
+      e.result = std::move(c.result);
+      e.wall_seconds = c.wall_seconds;
+      e.worker = std::move(c.worker);
+      unsaved_.push_back(std::move(e));
+      ++evaluations_;
+    }
+    const double now = SteadySeconds();
+    if (!unsaved_.empty() &&
+        (now - last_flush >= kFlushSeconds || unsaved_.size() >= kFlushCount ||
+         dispatcher->pending() == 0)) {
+      status = Flush();
+      last_flush = now;
+      if (status.ok()) status = Advance(dispatcher, progress);
+    }
+  }
+  Status flushed = Flush();
+  return status.ok() ? flushed : status;
+}
+
+Status EvolutionRun::Advance(
+    Dispatcher* dispatcher,
+    const std::function<void(const GenerationReport&)>& progress) {
+  for (;;) {
+    Result<std::optional<lineage::GenerationRow>> latest =
+        store_->LatestGeneration(run_id_);
+    if (!latest.ok()) return latest.status();
+    if (!latest->has_value()) {
+      bool changed = false;
+      Status status = AdvanceInitial(dispatcher, &changed);
+      if (!status.ok() || !changed) return status;
+      continue;
+    }
+    const lineage::GenerationRow& generation = **latest;
+    if (!generation.complete) {
+      Result<std::vector<lineage::Score>> scores =
+          store_->MemberScores(run_id_, generation.generation);
+      if (!scores.ok()) return scores.status();
+      for (const lineage::Score& s : *scores) {
+        if (!s.evaluated) return Status::Ok();  // Waiting for results.
+      }
+      Status status = CompleteGeneration(generation.generation,
+                                         generation.members, progress);
+      if (!status.ok()) return status;
+      continue;
+    }
+    if (generation.generation + 1 >= params().generations) {
+      if (!finished_) {
+        finished_ = true;
+        Status status = store_->FinishRun(run_id_);
+        if (!status.ok()) return status;
+        log_("run " + std::to_string(run_id_) + " finished after " +
+             std::to_string(generation.generation + 1) + " generations");
+      }
+      return Status::Ok();
+    }
+    Status status = MakeGeneration(generation.generation + 1, dispatcher);
+    if (!status.ok()) return status;
+  }
+}
+
+Status EvolutionRun::AdvanceInitial(Dispatcher* dispatcher, bool* changed) {
+  *changed = false;
+  const EvolutionParams& p = params();
+  const size_t population = static_cast<size_t>(p.population);
+  Result<std::vector<lineage::Score>> candidates = store_->ScoresOf(run_id_, 0);
+  if (!candidates.ok()) return candidates.status();
+  // The evaluated prefix (candidates [0, prefix) all evaluated) and the
+  // accepted candidates in it, in id order.
+  uint64_t prefix = 0;
+  std::vector<uint64_t> accepted;
+  for (const lineage::Score& c : *candidates) {
+    if (!c.evaluated) break;
+    prefix = c.id + 1;
+    if (c.fitness && *c.fitness > p.initial_min_fitness) {
+      accepted.push_back(c.id);
+    }
+  }
+  // Block k (ids k*B .. (k+1)*B - 1) is made when blocks 0..k-2 are all
+  // evaluated and hold fewer than `population` accepted candidates: a
+  // decision on evaluated blocks only, so every run of this seed makes the
+  // same blocks, and one block is always ahead to keep workers busy. It
+  // comes before choosing the population, which could otherwise end the
+  // making of blocks at a moment that depends on timing.
+  const uint64_t k = candidates->size() / kCandidateBlock;
+  bool make = k < 2;
+  if (!make && prefix >= (k - 1) * kCandidateBlock) {
+    const uint64_t limit = (k - 1) * kCandidateBlock;
+    size_t before = 0;
+    while (before < accepted.size() && accepted[before] < limit) ++before;
+    make = before < population;
+  }
+  if (make) {
+    std::vector<lineage::NewIndividual> batch;
+    for (uint64_t id = k * kCandidateBlock; id < (k + 1) * kCandidateBlock;
+         ++id) {
+      lineage::NewIndividual n;
+      n.id = id;
+      n.generation = 0;
+      n.operators = {"random"};
+      n.genome = GenomeToProto(InitialCandidate(id, p));
+      batch.push_back(std::move(n));
+    }
+    Status status = store_->AddIndividuals(run_id_, batch);
+    if (!status.ok()) return status;
+    *changed = true;
+    return Submit(batch, dispatcher);
+  }
+  // The population: the first `population` candidates above the
+  // threshold, once every candidate before the last of them is evaluated.
+  if (accepted.size() >= population) {
+    accepted.resize(population);
+    Status status = store_->AddGeneration(run_id_, 0, accepted);
+    if (!status.ok()) return status;
+    log_("initial population chosen from the first " +
+         std::to_string(accepted.back() + 1) + " random genomes");
+    *changed = true;
+  }
+  return Status::Ok();
+}
+
+Status EvolutionRun::CompleteGeneration(
+    int generation, const std::vector<uint64_t>& members,
+    const std::function<void(const GenerationReport&)>& progress) {
+  (void)members;
+  Result<std::vector<lineage::Score>> scores =
+      store_->MemberScores(run_id_, generation);
+  if (!scores.ok()) return scores.status();
+  const std::vector<Scored> ranked = Rank(ToScored(*scores));
+  lineage::GenerationStats stats;
+  std::vector<uint64_t> order;
+  std::vector<double> fitness;  // Best first.
+  for (const Scored& s : ranked) {
+    order.push_back(s.id);
+    if (s.fitness) fitness.push_back(*s.fitness);
+  }
+  stats.evaluated = static_cast<int>(fitness.size());
+  stats.failed = static_cast<int>(ranked.size() - fitness.size());
+  if (!fitness.empty()) {
+    stats.best_id = ranked.front().id;
+    stats.best = fitness.front();
+    double sum = 0.0;
+    for (double f : fitness) sum += f;  // In rank order: fixed.
+    stats.mean = sum / static_cast<double>(fitness.size());
+    const size_t n = fitness.size();
+    stats.median = n % 2 == 1 ? fitness[n / 2]
+                              : 0.5 * (fitness[n / 2 - 1] + fitness[n / 2]);
+  }
+  Status status = store_->CompleteGeneration(run_id_, generation, order, stats);
+  if (!status.ok()) return status;
+  if (progress) {
+    GenerationReport report;
+    report.generation = generation;
+    report.generations = params().generations;
+    report.stats = stats;
+    report.evaluations = evaluations_;
+    const double elapsed = SteadySeconds() - started_;
+    report.evaluations_per_second =
+        elapsed > 0 ? static_cast<double>(evaluations_) / elapsed : 0.0;
+    if (report.evaluations_per_second > 0) {
+      const double left =
+          static_cast<double>(params().generations - generation - 1) *
+          (params().population - params().elite);
+      report.seconds_left = left / report.evaluations_per_second;
+    }
+    progress(report);
+  }
+  return Status::Ok();
+}
+
+Status EvolutionRun::MakeGeneration(int generation, Dispatcher* dispatcher) {
+  const EvolutionParams& p = params();
+  Result<lineage::GenerationRow> previous =
+      store_->Generation(run_id_, generation - 1);
+  if (!previous.ok()) return previous.status();
+  std::map<uint64_t, Genome> genomes;
+  std::vector<Scored> scored;
+  for (uint64_t id : previous->members) {
+    Result<lineage::IndividualRow> row = store_->Individual(run_id_, id);
+    if (!row.ok()) return row.status();
+    Result<Genome> genome = GenomeFromProto(row->genome);
+    if (!genome.ok()) {
+      return genome.status().WithPrefix("stored genome of individual " +
+                                        std::to_string(id));
+    }
+    genomes.emplace(id, std::move(genome).value());
+    scored.push_back({id, row->fitness});
+  }
+  const std::vector<Scored> ranked = Rank(std::move(scored));
+  std::vector<uint64_t> members;
+  for (int e = 0; e < p.elite && e < static_cast<int>(ranked.size()); ++e) {
+    members.push_back(ranked[e].id);
+  }
+  Result<uint64_t> next = store_->NextId(run_id_);
+  if (!next.ok()) return next.status();
+  const auto genome_of = [&](uint64_t id) -> const Genome& {
+    return genomes.at(id);
+  };
+  std::vector<lineage::NewIndividual> children;
+  for (uint64_t id = *next; members.size() < static_cast<size_t>(p.population);
+       ++id) {
+    Offspring offspring = MakeOffspring(id, ranked, genome_of, p);
+    lineage::NewIndividual n;
+    n.id = id;
+    n.generation = generation;
+    n.parents = std::move(offspring.parents);
+    n.operators = std::move(offspring.operators);
+    n.genome = GenomeToProto(offspring.genome);
+    members.push_back(id);
+    children.push_back(std::move(n));
+  }
+  Status status = store_->AddGeneration(run_id_, generation, members, children);
+  if (!status.ok()) return status;
+  return Submit(children, dispatcher);
+}
+
+}  // namespace animat

@@ -1,0 +1,113 @@
+// An evolutionary run driven through a dispatcher and recorded in a
+// lineage store; started fresh or resumed exactly where it stopped.
+//
+// Determinism: every individual is a pure function of the run's seed, its
+// id and the ranked generation before it (master/evolution/operators.h);
+// ids are handed out in a fixed order; initial candidates come in blocks of
+// kCandidateBlock, and block k + 2 is made only once blocks 0..k are all
+// evaluated and have not yet given the population. So the store ends up
+// with the same individuals, parents and evaluations whatever the number
+// of workers, the order results arrive in, or how often the master was
+// killed and resumed.
+//
+// Not thread-safe: one thread calls Run.
+#ifndef ANIMAT_MASTER_RUN_EVOLUTION_RUN_H_
+#define ANIMAT_MASTER_RUN_EVOLUTION_RUN_H_
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/base/log.h"
+#include "common/base/status.h"
+#include "master/dispatcher.h"
+#include "master/evolution/evolution_params.h"
+#include "master/evolution/operators.h"
+#include "master/lineage/store.h"
+
+namespace animat {
+
+// Initial candidates are made this many at a time.
+inline constexpr int kCandidateBlock = 1024;
+
+// One line's worth of progress, after each generation completes.
+struct GenerationReport {
+  int generation = 0;
+  int generations = 0;  // Of the run.
+  lineage::GenerationStats stats;
+  int64_t evaluations = 0;  // Since this process started.
+  double evaluations_per_second = 0;
+  double seconds_left = -1;  // Estimate; -1 when unknown.
+};
+
+class EvolutionRun {
+ public:
+  // A new run in `store` (which must hold none). The store must outlive
+  // the run.
+  static Result<std::unique_ptr<EvolutionRun>> Start(
+      lineage::Store* store, const RunSettings& settings,
+      LogSink log = Prefixed("master", StderrSink));
+
+  // Continues the store's run. Refuses, saying why, when `settings` is
+  // given and differs from the stored configuration, or when the store was
+  // written by another simulator build, unless `force`. `generations`, when
+  // set, replaces the run's number of generations (to extend a finished
+  // run).
+  static Result<std::unique_ptr<EvolutionRun>> Resume(
+      lineage::Store* store, const std::optional<RunSettings>& settings,
+      bool force, std::optional<int> generations,
+      LogSink log = Prefixed("master", StderrSink));
+
+  // Serves `dispatcher` (built with model_config()) until the run has all
+  // its generations or `stop` becomes true; results received so far are
+  // committed before returning. `progress`, if set, is called after each
+  // generation completes.
+  Status Run(
+      Dispatcher* dispatcher, const std::atomic<bool>& stop,
+      const std::function<void(const GenerationReport&)>& progress = nullptr);
+
+  const ModelConfig& model_config() const { return settings_.model; }
+  const EvolutionParams& params() const { return settings_.evolution; }
+  int64_t run_id() const { return run_id_; }
+  bool finished() const { return finished_; }
+
+ private:
+  EvolutionRun(lineage::Store* store, RunSettings settings, int64_t run_id,
+               LogSink log)
+      : store_(store),
+        settings_(std::move(settings)),
+        run_id_(run_id),
+        log_(std::move(log)) {}
+
+  // Advances as far as the store allows: makes candidate blocks, chooses
+  // the initial population, completes generations, makes the next one.
+  // New individuals are submitted to `dispatcher`.
+  Status Advance(Dispatcher* dispatcher,
+                 const std::function<void(const GenerationReport&)>& progress);
+  Status AdvanceInitial(Dispatcher* dispatcher, bool* changed);
+  Status CompleteGeneration(
+      int generation, const std::vector<uint64_t>& members,
+      const std::function<void(const GenerationReport&)>& progress);
+  Status MakeGeneration(int generation, Dispatcher* dispatcher);
+  Status Submit(const std::vector<lineage::NewIndividual>& made,
+                Dispatcher* dispatcher);
+  Status Flush();
+
+  lineage::Store* store_;
+  RunSettings settings_;
+  int64_t run_id_;
+  LogSink log_;
+  bool finished_ = false;
+  std::vector<lineage::Evaluation> unsaved_;  // Results not yet committed.
+  int64_t evaluations_ = 0;
+  double started_ = 0;  // Seconds, steady clock.
+};
+
+}  // namespace animat
+
+#endif  // ANIMAT_MASTER_RUN_EVOLUTION_RUN_H_
