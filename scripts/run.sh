@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
-# Sets up, builds, and runs the main job: develops and simulates the sample
-# animat, writes its trace to out/sample-trace.json and prints its fitness.
+# Sets up, builds, and runs the main job: an evolution on this machine
+# (a master and one worker per core on loopback) recorded in
+# out/evolution.db. Run it again to continue an interrupted run; Ctrl-C
+# leaves the store resumable. Extra arguments go to animat evolve (e.g.
+# --generations 40 to run longer).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 scripts/build.sh
 mkdir -p out
-build/bin/animat simulate --genome configs/sample-genome.json \
-  --config configs/default.txtpb --trace out/sample-trace.json "$@"
-echo "trace: out/sample-trace.json"
+build/bin/animat evolve --config configs/quickstart.txtpb \
+  --db out/evolution.db "$@"
+echo "the best: build/bin/animat lineage best --db out/evolution.db"

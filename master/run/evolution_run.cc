@@ -284,20 +284,24 @@ Status EvolutionRun::CompleteGeneration(
   }
   Status status = store_->CompleteGeneration(run_id_, generation, order, stats);
   if (!status.ok()) return status;
+  // Rate and estimate from the generation just finished (the initial
+  // population's thousands of quick failures would mislead an average).
+  const double now = SteadySeconds();
+  const double since = now - (last_report_ > 0 ? last_report_ : started_);
+  const int64_t done = evaluations_ - evaluations_at_last_report_;
+  last_report_ = now;
+  evaluations_at_last_report_ = evaluations_;
   if (progress) {
     GenerationReport report;
     report.generation = generation;
     report.generations = params().generations;
     report.stats = stats;
     report.evaluations = evaluations_;
-    const double elapsed = SteadySeconds() - started_;
     report.evaluations_per_second =
-        elapsed > 0 ? static_cast<double>(evaluations_) / elapsed : 0.0;
-    if (report.evaluations_per_second > 0) {
-      const double left =
-          static_cast<double>(params().generations - generation - 1) *
-          (params().population - params().elite);
-      report.seconds_left = left / report.evaluations_per_second;
+        since > 0 ? static_cast<double>(done) / since : 0.0;
+    if (generation > 0 && since > 0) {
+      report.seconds_left =
+          static_cast<double>(params().generations - generation - 1) * since;
     }
     progress(report);
   }

@@ -105,7 +105,9 @@ class EvolutionRun {
   bool finished_ = false;
   std::vector<lineage::Evaluation> unsaved_;  // Results not yet committed.
   int64_t evaluations_ = 0;
-  double started_ = 0;  // Seconds, steady clock.
+  double started_ = 0;      // Seconds, steady clock.
+  double last_report_ = 0;  // When the last generation completed.
+  int64_t evaluations_at_last_report_ = 0;
 };
 
 }  // namespace animat
