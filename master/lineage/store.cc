@@ -183,13 +183,14 @@ Status Store::UpdateRunConfig(int64_t run, const v1::RunConfig& config) {
   std::string text;
   google::protobuf::TextFormat::PrintToString(config, &text);
   Result<sql::Statement> update = db_->Prepare(
-      "UPDATE runs SET config = ?, config_text = ?, config_hash = ?,"
-      " state = 'running', ended_at = NULL WHERE run_id = ?");
+      "UPDATE runs SET seed = ?, config = ?, config_text = ?,"
+      " config_hash = ?, state = 'running', ended_at = NULL WHERE run_id = ?");
   if (!update.ok()) return update.status();
-  update->BindBlob(1, config.SerializeAsString())
-      .Bind(2, text)
-      .Bind(3, Hex64(protocol::MessageHash(config)))
-      .Bind(4, run);
+  update->Bind(1, static_cast<int64_t>(config.evolution().seed()))
+      .BindBlob(2, config.SerializeAsString())
+      .Bind(3, text)
+      .Bind(4, Hex64(protocol::MessageHash(config)))
+      .Bind(5, run);
   return update->Run();
 }
 

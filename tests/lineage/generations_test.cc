@@ -1,0 +1,203 @@
+// Generations in the lineage store: AddGeneration, CompleteGeneration,
+// Generation, LatestGeneration.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "master/lineage/store.h"
+#include "tests/lineage/lineage_test_util.h"
+
+namespace animat::lineage {
+namespace {
+
+using ::animat::testing::IsUtcStamp;
+using ::animat::testing::MakeIndividual;
+using ::animat::testing::MakeRun;
+using ::animat::testing::MemoryStore;
+using ::animat::testing::Rows;
+using ::animat::testing::Value;
+
+using Table = std::vector<std::vector<std::string>>;
+
+class GenerationsTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    store_ = MemoryStore();
+    ASSERT_NE(store_, nullptr);
+    run_ = MakeRun(*store_);
+    ASSERT_TRUE(store_
+                    ->AddIndividuals(run_, {MakeIndividual(0, 0),
+                                            MakeIndividual(1, 0),
+                                            MakeIndividual(2, 0),
+                                            MakeIndividual(3, 0)})
+                    .ok());
+  }
+
+  std::unique_ptr<Store> store_;
+  int64_t run_ = 0;
+};
+
+TEST_F(GenerationsTest, AddGenerationOfExistingIndividuals) {
+  ASSERT_TRUE(store_->AddGeneration(run_, 0, {3, 0, 2}).ok());
+  Result<GenerationRow> g = store_->Generation(run_, 0);
+  ASSERT_TRUE(g.ok()) << g.status().ToString();
+  EXPECT_EQ(g->generation, 0);
+  EXPECT_EQ(g->size, 3);
+  EXPECT_FALSE(g->complete);
+  EXPECT_EQ(g->members, (std::vector<uint64_t>{0, 2, 3}));  // By id.
+  const Table row = Rows(*store_,
+                         "SELECT size, created_at, completed_at, evaluated,"
+                         " failed, best_id, best_fitness, mean_fitness,"
+                         " median_fitness FROM generations");
+  ASSERT_EQ(row.size(), 1u);
+  EXPECT_EQ(row[0][0], "3");
+  EXPECT_TRUE(IsUtcStamp(row[0][1])) << row[0][1];
+  for (size_t c = 2; c < row[0].size(); ++c) {
+    EXPECT_EQ(row[0][c], "NULL") << "column " << c;
+  }
+  EXPECT_EQ(Value(*store_, "SELECT COUNT(*) FROM members WHERE rank IS NULL"),
+            "3");
+}
+
+TEST_F(GenerationsTest, AddGenerationWithItsIndividuals) {
+  ASSERT_TRUE(store_->AddGeneration(run_, 0, {0, 1}).ok());
+  ASSERT_TRUE(store_
+                  ->AddGeneration(run_, 1, {0, 4, 5},
+                                  {MakeIndividual(4, 1, {0, 1}, {"crossover"}),
+                                   MakeIndividual(5, 1, {1}, {"sign"})})
+                  .ok());
+  Result<GenerationRow> g = store_->Generation(run_, 1);
+  ASSERT_TRUE(g.ok());
+  EXPECT_EQ(g->size, 3);
+  EXPECT_EQ(g->members, (std::vector<uint64_t>{0, 4, 5}));
+  Result<IndividualRow> child = store_->Individual(run_, 4);
+  ASSERT_TRUE(child.ok()) << child.status().ToString();
+  EXPECT_EQ(child->parents, (std::vector<uint64_t>{0, 1}));
+  EXPECT_EQ(child->operators, "crossover");
+  Result<std::vector<uint64_t>> pending = store_->Unevaluated(run_);
+  ASSERT_TRUE(pending.ok());
+  EXPECT_EQ(*pending, (std::vector<uint64_t>{0, 1, 2, 3, 4, 5}));
+}
+
+TEST_F(GenerationsTest, AddGenerationIsAtomicWhenAnIndividualFails) {
+  // Individual 2 exists already: the insert fails, and neither the
+  // generation nor its members nor the other new individual appear.
+  const Status status = store_->AddGeneration(
+      run_, 0, {0, 6, 2},
+      {MakeIndividual(6, 0, {0}), MakeIndividual(2, 0, {1})});
+  EXPECT_FALSE(status.ok());
+  EXPECT_EQ(Value(*store_, "SELECT COUNT(*) FROM generations"), "0");
+  EXPECT_EQ(Value(*store_, "SELECT COUNT(*) FROM members"), "0");
+  EXPECT_EQ(Value(*store_, "SELECT COUNT(*) FROM individuals WHERE id = 6"),
+            "0");
+  EXPECT_EQ(Value(*store_, "SELECT COUNT(*) FROM parents"), "0");
+  Result<std::optional<GenerationRow>> latest = store_->LatestGeneration(run_);
+  ASSERT_TRUE(latest.ok());
+  EXPECT_FALSE(latest->has_value());
+}
+
+TEST_F(GenerationsTest, AddGenerationIsAtomicWhenTheGenerationExists) {
+  ASSERT_TRUE(store_->AddGeneration(run_, 0, {0, 1}).ok());
+  EXPECT_FALSE(
+      store_->AddGeneration(run_, 0, {7}, {MakeIndividual(7, 0)}).ok());
+  EXPECT_EQ(Value(*store_, "SELECT COUNT(*) FROM individuals WHERE id = 7"),
+            "0");
+  Result<GenerationRow> g = store_->Generation(run_, 0);
+  ASSERT_TRUE(g.ok());
+  EXPECT_EQ(g->members, (std::vector<uint64_t>{0, 1}));
+}
+
+TEST_F(GenerationsTest, CompleteGenerationSetsRanksAndStatistics) {
+  ASSERT_TRUE(store_->AddGeneration(run_, 0, {0, 1, 2, 3}).ok());
+  GenerationStats stats;
+  stats.evaluated = 3;
+  stats.failed = 1;
+  stats.best_id = 2;
+  stats.best = 0.75;
+  stats.mean = 0.5;
+  stats.median = 0.4;
+  ASSERT_TRUE(store_->CompleteGeneration(run_, 0, {2, 0, 3, 1}, stats).ok());
+
+  EXPECT_EQ(Rows(*store_, "SELECT id, rank FROM members ORDER BY id"),
+            (Table{{"0", "1"}, {"1", "3"}, {"2", "0"}, {"3", "2"}}));
+  const Table row = Rows(
+      *store_,
+      "SELECT run_id, generation, size, evaluated, failed, best_id,"
+      " best_fitness, mean_fitness, median_fitness, completed_at >= "
+      "created_at FROM generation_statistics");
+  EXPECT_EQ(row, (Table{{std::to_string(run_), "0", "4", "3", "1", "2",
+                         "0.75", "0.5", "0.4", "1"}}));
+  EXPECT_TRUE(IsUtcStamp(Value(*store_, "SELECT completed_at FROM generations")));
+
+  Result<GenerationRow> g = store_->Generation(run_, 0);
+  ASSERT_TRUE(g.ok());
+  EXPECT_TRUE(g->complete);
+  EXPECT_EQ(g->members, (std::vector<uint64_t>{2, 0, 3, 1}));  // Rank order.
+}
+
+TEST_F(GenerationsTest, CompleteGenerationWithoutAnyFitness) {
+  ASSERT_TRUE(store_->AddGeneration(run_, 0, {1, 0}).ok());
+  GenerationStats stats;
+  stats.failed = 2;
+  ASSERT_TRUE(store_->CompleteGeneration(run_, 0, {1, 0}, stats).ok());
+  EXPECT_EQ(Rows(*store_,
+                 "SELECT evaluated, failed, best_id, best_fitness,"
+                 " mean_fitness, median_fitness, completed_at IS NOT NULL"
+                 " FROM generations"),
+            (Table{{"0", "2", "NULL", "NULL", "NULL", "NULL", "1"}}));
+  Result<GenerationRow> g = store_->Generation(run_, 0);
+  ASSERT_TRUE(g.ok());
+  EXPECT_TRUE(g->complete);
+  EXPECT_EQ(g->members, (std::vector<uint64_t>{1, 0}));
+}
+
+TEST_F(GenerationsTest, CompletingOneGenerationLeavesOthersAlone) {
+  ASSERT_TRUE(store_->AddGeneration(run_, 0, {0, 1}).ok());
+  ASSERT_TRUE(store_->AddGeneration(run_, 1, {1, 0}).ok());
+  GenerationStats stats;
+  stats.evaluated = 2;
+  ASSERT_TRUE(store_->CompleteGeneration(run_, 1, {1, 0}, stats).ok());
+  Result<GenerationRow> g0 = store_->Generation(run_, 0);
+  ASSERT_TRUE(g0.ok());
+  EXPECT_FALSE(g0->complete);
+  EXPECT_EQ(Value(*store_,
+                  "SELECT COUNT(*) FROM members WHERE generation = 0 AND "
+                  "rank IS NOT NULL"),
+            "0");
+}
+
+TEST_F(GenerationsTest, LatestGenerationIsTheHighestOfTheRun) {
+  Result<std::optional<GenerationRow>> latest = store_->LatestGeneration(run_);
+  ASSERT_TRUE(latest.ok());
+  EXPECT_FALSE(latest->has_value());
+  ASSERT_TRUE(store_->AddGeneration(run_, 0, {0, 1}).ok());
+  ASSERT_TRUE(store_->AddGeneration(run_, 2, {3}).ok());
+  ASSERT_TRUE(store_->AddGeneration(run_, 1, {2}).ok());
+  latest = store_->LatestGeneration(run_);
+  ASSERT_TRUE(latest.ok());
+  ASSERT_TRUE(latest->has_value());
+  EXPECT_EQ((*latest)->generation, 2);
+  EXPECT_EQ((*latest)->members, (std::vector<uint64_t>{3}));
+  EXPECT_FALSE((*latest)->complete);
+
+  // Another run's generations do not count.
+  const int64_t other = MakeRun(*store_, 8);
+  latest = store_->LatestGeneration(other);
+  ASSERT_TRUE(latest.ok());
+  EXPECT_FALSE(latest->has_value());
+}
+
+TEST_F(GenerationsTest, UnknownGenerationIsNotFound) {
+  Result<GenerationRow> g = store_->Generation(run_, 3);
+  ASSERT_FALSE(g.ok());
+  EXPECT_EQ(g.status().code(), StatusCode::kNotFound);
+  EXPECT_EQ(g.status().message(),
+            "no generation 3 in run " + std::to_string(run_));
+}
+
+}  // namespace
+}  // namespace animat::lineage

@@ -1,0 +1,166 @@
+// Runs in the lineage store: CreateRun, Runs, FinishRun, UpdateRunConfig.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <google/protobuf/text_format.h>
+#include <google/protobuf/util/message_differencer.h>
+
+#include "common/protocol/protocol.h"
+#include "master/lineage/store.h"
+#include "tests/lineage/lineage_test_util.h"
+
+namespace animat::lineage {
+namespace {
+
+using ::animat::testing::IsHex16;
+using ::animat::testing::IsUtcStamp;
+using ::animat::testing::MemoryStore;
+using ::animat::testing::SmallRunConfig;
+using ::animat::testing::Value;
+using ::google::protobuf::util::MessageDifferencer;
+
+TEST(RunsTest, CreateRunRoundTrips) {
+  std::unique_ptr<Store> store = MemoryStore();
+  ASSERT_NE(store, nullptr);
+  const v1::RunConfig config = SmallRunConfig(3);
+  Result<int64_t> run = store->CreateRun(3, config, "animat 0.1 abc gcc x86");
+  ASSERT_TRUE(run.ok()) << run.status().ToString();
+
+  Result<std::vector<RunRow>> runs = store->Runs();
+  ASSERT_TRUE(runs.ok()) << runs.status().ToString();
+  ASSERT_EQ(runs->size(), 1u);
+  const RunRow& row = (*runs)[0];
+  EXPECT_EQ(row.run_id, *run);
+  EXPECT_EQ(row.seed, 3u);
+  EXPECT_TRUE(MessageDifferencer::Equals(row.config, config))
+      << row.config.DebugString();
+  EXPECT_TRUE(IsHex16(row.config_hash)) << row.config_hash;
+  EXPECT_EQ(row.config_hash, Hex64(protocol::MessageHash(config)));
+  EXPECT_EQ(row.build_id, "animat 0.1 abc gcc x86");
+  EXPECT_TRUE(IsUtcStamp(row.started_at)) << row.started_at;
+  EXPECT_EQ(row.ended_at, "");
+  EXPECT_EQ(row.state, "running");
+
+  // config_text is the same configuration in text format.
+  v1::RunConfig from_text;
+  ASSERT_TRUE(google::protobuf::TextFormat::ParseFromString(
+      Value(*store, "SELECT config_text FROM runs"), &from_text));
+  EXPECT_TRUE(MessageDifferencer::Equals(from_text, config));
+  EXPECT_EQ(Value(*store, "SELECT ended_at FROM runs"), "NULL");
+}
+
+TEST(RunsTest, SeedsAboveTwoToThe63RoundTrip) {
+  std::unique_ptr<Store> store = MemoryStore();
+  ASSERT_NE(store, nullptr);
+  const uint64_t seed = 0xfedcba9876543210ULL;
+  ASSERT_TRUE(store->CreateRun(seed, SmallRunConfig(seed), "b").ok());
+  Result<std::vector<RunRow>> runs = store->Runs();
+  ASSERT_TRUE(runs.ok());
+  ASSERT_EQ(runs->size(), 1u);
+  EXPECT_EQ((*runs)[0].seed, seed);
+}
+
+TEST(RunsTest, RunsAreListedOldestFirst) {
+  std::unique_ptr<Store> store = MemoryStore();
+  ASSERT_NE(store, nullptr);
+  Result<int64_t> first = store->CreateRun(1, SmallRunConfig(1), "b");
+  Result<int64_t> second = store->CreateRun(2, SmallRunConfig(2), "b");
+  ASSERT_TRUE(first.ok() && second.ok());
+  EXPECT_NE(*first, *second);
+  Result<std::vector<RunRow>> runs = store->Runs();
+  ASSERT_TRUE(runs.ok());
+  ASSERT_EQ(runs->size(), 2u);
+  EXPECT_EQ((*runs)[0].run_id, *first);
+  EXPECT_EQ((*runs)[0].seed, 1u);
+  EXPECT_EQ((*runs)[1].run_id, *second);
+  EXPECT_EQ((*runs)[1].seed, 2u);
+  EXPECT_NE((*runs)[0].config_hash, (*runs)[1].config_hash);
+}
+
+TEST(RunsTest, FinishRunSetsEndedAtAndState) {
+  std::unique_ptr<Store> store = MemoryStore();
+  ASSERT_NE(store, nullptr);
+  Result<int64_t> run = store->CreateRun(1, SmallRunConfig(1), "b");
+  Result<int64_t> other = store->CreateRun(2, SmallRunConfig(2), "b");
+  ASSERT_TRUE(run.ok() && other.ok());
+  ASSERT_TRUE(store->FinishRun(*run).ok());
+  Result<std::vector<RunRow>> runs = store->Runs();
+  ASSERT_TRUE(runs.ok());
+  ASSERT_EQ(runs->size(), 2u);
+  EXPECT_EQ((*runs)[0].state, "finished");
+  EXPECT_TRUE(IsUtcStamp((*runs)[0].ended_at)) << (*runs)[0].ended_at;
+  EXPECT_GE((*runs)[0].ended_at, (*runs)[0].started_at);
+  // Only that run.
+  EXPECT_EQ((*runs)[1].state, "running");
+  EXPECT_EQ((*runs)[1].ended_at, "");
+}
+
+TEST(RunsTest, UpdateRunConfigReplacesConfigAndMarksRunning) {
+  std::unique_ptr<Store> store = MemoryStore();
+  ASSERT_NE(store, nullptr);
+  Result<int64_t> run = store->CreateRun(1, SmallRunConfig(1), "b");
+  ASSERT_TRUE(run.ok());
+  ASSERT_TRUE(store->FinishRun(*run).ok());
+  v1::RunConfig longer = SmallRunConfig(1);
+  longer.mutable_evolution()->set_generations(40);
+  ASSERT_TRUE(store->UpdateRunConfig(*run, longer).ok());
+
+  Result<std::vector<RunRow>> runs = store->Runs();
+  ASSERT_TRUE(runs.ok());
+  ASSERT_EQ(runs->size(), 1u);
+  const RunRow& row = (*runs)[0];
+  EXPECT_TRUE(MessageDifferencer::Equals(row.config, longer));
+  EXPECT_EQ(row.config_hash, Hex64(protocol::MessageHash(longer)));
+  EXPECT_NE(row.config_hash, Hex64(protocol::MessageHash(SmallRunConfig(1))));
+  EXPECT_EQ(row.state, "running");
+  EXPECT_EQ(row.ended_at, "");
+  EXPECT_EQ(row.build_id, "b");
+  v1::RunConfig from_text;
+  ASSERT_TRUE(google::protobuf::TextFormat::ParseFromString(
+      Value(*store, "SELECT config_text FROM runs"), &from_text));
+  EXPECT_TRUE(MessageDifferencer::Equals(from_text, longer));
+}
+
+// After a forced resume with a configuration of another seed, the row's
+// seed column agrees with its configuration.
+TEST(RunsTest, UpdateRunConfigKeepsSeedColumnInStepWithConfig) {
+  std::unique_ptr<Store> store = MemoryStore();
+  ASSERT_NE(store, nullptr);
+  Result<int64_t> run = store->CreateRun(1, SmallRunConfig(1), "b");
+  ASSERT_TRUE(run.ok());
+  ASSERT_TRUE(store->UpdateRunConfig(*run, SmallRunConfig(9)).ok());
+  Result<std::vector<RunRow>> runs = store->Runs();
+  ASSERT_TRUE(runs.ok());
+  ASSERT_EQ(runs->size(), 1u);
+  EXPECT_EQ((*runs)[0].seed, (*runs)[0].config.evolution().seed());
+}
+
+TEST(RunsTest, UnreadableConfigurationIsReportedNotIgnored) {
+  std::unique_ptr<Store> store = MemoryStore();
+  ASSERT_NE(store, nullptr);
+  ASSERT_TRUE(store->CreateRun(1, SmallRunConfig(1), "b").ok());
+  ASSERT_TRUE(store->database()
+                  .Execute("UPDATE runs SET config = X'ffffffff'")
+                  .ok());
+  Result<std::vector<RunRow>> runs = store->Runs();
+  ASSERT_FALSE(runs.ok());
+  EXPECT_NE(runs.status().message().find("unreadable configuration"),
+            std::string::npos)
+      << runs.status().message();
+}
+
+TEST(RunsTest, StateIsCheckedBySchema) {
+  std::unique_ptr<Store> store = MemoryStore();
+  ASSERT_NE(store, nullptr);
+  ASSERT_TRUE(store->CreateRun(1, SmallRunConfig(1), "b").ok());
+  EXPECT_FALSE(
+      store->database().Execute("UPDATE runs SET state = 'paused'").ok());
+  EXPECT_EQ(Value(*store, "SELECT state FROM runs"), "running");
+}
+
+}  // namespace
+}  // namespace animat::lineage

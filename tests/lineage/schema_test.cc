@@ -1,0 +1,387 @@
+// The lineage store's schema, migrations, lock and read-only opening
+// (master/lineage/schema.h, store.h).
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <functional>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "master/lineage/schema.h"
+#include "master/lineage/sqlite.h"
+#include "master/lineage/store.h"
+#include "tests/lineage/lineage_test_util.h"
+
+namespace animat::lineage {
+namespace {
+
+using ::animat::testing::MakeIndividual;
+using ::animat::testing::MakeRun;
+using ::animat::testing::MemoryStore;
+using ::animat::testing::Rows;
+using ::animat::testing::TempStorePath;
+using ::animat::testing::Value;
+
+bool Contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+// Writes an SQLite file at `path` whose user_version is `version` and
+// which holds nothing else.
+void MakeVersionedFile(const std::string& path, int version) {
+  Result<std::unique_ptr<sql::Database>> db = sql::Database::Open(path);
+  ASSERT_TRUE(db.ok()) << db.status().ToString();
+  ASSERT_TRUE((*db)->Execute("PRAGMA user_version = " +
+                             std::to_string(version))
+                  .ok());
+}
+
+int UserVersion(const std::string& path) {
+  Result<std::unique_ptr<sql::Database>> db =
+      sql::Database::Open(path, /*read_only=*/true);
+  EXPECT_TRUE(db.ok()) << db.status().ToString();
+  if (!db.ok()) return -1;
+  Result<sql::Statement> pragma = (*db)->Prepare("PRAGMA user_version");
+  EXPECT_TRUE(pragma.ok());
+  if (!pragma.ok() || !pragma->Step().ok()) return -1;
+  return static_cast<int>(pragma->Int(0));
+}
+
+// What a child process reports: its exit code and the text it wrote.
+struct ChildReport {
+  int exit_code = -1;
+  std::string text;
+};
+
+// Runs `body` in a forked child; the child writes the message of the
+// Status it returns to a pipe and exits 0 for OK, 1 otherwise.
+ChildReport RunInChild(const std::function<Status()>& body) {
+  int fds[2];
+  if (pipe(fds) != 0) {
+    ADD_FAILURE() << "pipe failed";
+    return {};
+  }
+  const pid_t pid = fork();
+  if (pid == 0) {
+    close(fds[0]);
+    const Status status = body();
+    const std::string& message = status.message();
+    ssize_t written = write(fds[1], message.data(), message.size());
+    (void)written;
+    close(fds[1]);
+    _exit(status.ok() ? 0 : 1);
+  }
+  close(fds[1]);
+  ChildReport report;
+  char buffer[512];
+  for (;;) {
+    const ssize_t n = read(fds[0], buffer, sizeof(buffer));
+    if (n <= 0) break;
+    report.text.append(buffer, static_cast<size_t>(n));
+  }
+  close(fds[0]);
+  int wait_status = 0;
+  if (pid < 0 || waitpid(pid, &wait_status, 0) != pid) {
+    ADD_FAILURE() << "fork or waitpid failed";
+    return report;
+  }
+  report.exit_code = WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : -1;
+  return report;
+}
+
+Status OpenAndClose(const std::string& path) {
+  Result<std::unique_ptr<Store>> store = Store::Open(path);
+  return store.ok() ? Status::Ok() : store.status();
+}
+
+TEST(SchemaTest, NewStoreHasCurrentVersionTablesViewsAndIndexes) {
+  std::unique_ptr<Store> store = MemoryStore();
+  ASSERT_NE(store, nullptr);
+  EXPECT_EQ(Value(*store, "PRAGMA user_version"),
+            std::to_string(kSchemaVersion));
+  const std::vector<std::vector<std::string>> objects =
+      Rows(*store,
+           "SELECT type, name FROM sqlite_schema WHERE name NOT LIKE "
+           "'sqlite_%' ORDER BY type, name");
+  const std::vector<std::vector<std::string>> expected = {
+      {"index", "individuals_to_evaluate"},
+      {"index", "parents_by_parent"},
+      {"table", "generations"},
+      {"table", "individuals"},
+      {"table", "members"},
+      {"table", "parents"},
+      {"table", "runs"},
+      {"view", "ancestry"},
+      {"view", "best"},
+      {"view", "generation_statistics"},
+      {"view", "line_of_descent"},
+  };
+  EXPECT_EQ(objects, expected);
+  // The views compile against the tables (an empty store answers them).
+  for (const char* view :
+       {"ancestry", "best", "generation_statistics", "line_of_descent"}) {
+    EXPECT_EQ(Value(*store, std::string("SELECT COUNT(*) FROM ") + view), "0")
+        << view;
+  }
+}
+
+TEST(SchemaTest, FileStoreUsesWalFullSyncAndForeignKeys) {
+  TempStorePath file("pragmas");
+  Result<std::unique_ptr<Store>> store = Store::Open(file.path());
+  ASSERT_TRUE(store.ok()) << store.status().ToString();
+  EXPECT_EQ(Value(**store, "PRAGMA journal_mode"), "wal");
+  EXPECT_EQ(Value(**store, "PRAGMA synchronous"), "2");  // FULL.
+  EXPECT_EQ(Value(**store, "PRAGMA foreign_keys"), "1");
+}
+
+TEST(SchemaTest, EmptyFileIsMigratedFromVersionZero) {
+  TempStorePath file("empty");
+  { std::ofstream touch(file.path()); }
+  ASSERT_EQ(UserVersion(file.path()), 0);
+  {
+    Result<std::unique_ptr<Store>> store = Store::Open(file.path());
+    ASSERT_TRUE(store.ok()) << store.status().ToString();
+    EXPECT_EQ(Value(**store, "SELECT COUNT(*) FROM sqlite_schema WHERE type = "
+                             "'table' AND name = 'individuals'"),
+              "1");
+  }
+  EXPECT_EQ(UserVersion(file.path()), kSchemaVersion);
+}
+
+TEST(SchemaTest, ReopeningKeepsDataAndDoesNotMigrateAgain) {
+  TempStorePath file("reopen");
+  {
+    Result<std::unique_ptr<Store>> store = Store::Open(file.path());
+    ASSERT_TRUE(store.ok()) << store.status().ToString();
+    const int64_t run = MakeRun(**store);
+    ASSERT_TRUE((*store)->AddIndividuals(run, {MakeIndividual(0, 0)}).ok());
+  }
+  Result<std::unique_ptr<Store>> store = Store::Open(file.path());
+  ASSERT_TRUE(store.ok()) << store.status().ToString();
+  EXPECT_EQ(Value(**store, "PRAGMA user_version"),
+            std::to_string(kSchemaVersion));
+  EXPECT_EQ(Value(**store, "SELECT COUNT(*) FROM individuals"), "1");
+}
+
+TEST(SchemaTest, MigrateIsANoOpOnACurrentStore) {
+  Result<std::unique_ptr<sql::Database>> db = sql::Database::Open("");
+  ASSERT_TRUE(db.ok());
+  ASSERT_TRUE(Migrate(**db).ok());
+  const Status again = Migrate(**db);
+  EXPECT_TRUE(again.ok()) << again.ToString();
+}
+
+TEST(SchemaTest, NewerVersionIsRefusedNamingBothVersions) {
+  TempStorePath file("newer");
+  const int newer = kSchemaVersion + 1;
+  MakeVersionedFile(file.path(), newer);
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    // The second attempt shows the refusal released the lock.
+    Result<std::unique_ptr<Store>> store = Store::Open(file.path());
+    ASSERT_FALSE(store.ok());
+    const std::string& message = store.status().message();
+    EXPECT_EQ(store.status().code(), StatusCode::kInvalidArgument) << message;
+    EXPECT_TRUE(Contains(message, "version " + std::to_string(newer)))
+        << message;
+    EXPECT_TRUE(Contains(message, "up to " + std::to_string(kSchemaVersion)))
+        << message;
+    EXPECT_TRUE(Contains(message, file.path())) << message;
+  }
+  EXPECT_EQ(UserVersion(file.path()), newer);  // Left as it was.
+}
+
+TEST(LockTest, SecondOpenInTheSameProcessFailsSayingSo) {
+  TempStorePath file("lock-same");
+  Result<std::unique_ptr<Store>> first = Store::Open(file.path());
+  ASSERT_TRUE(first.ok()) << first.status().ToString();
+  Result<std::unique_ptr<Store>> second = Store::Open(file.path());
+  ASSERT_FALSE(second.ok());
+  const std::string& message = second.status().message();
+  EXPECT_TRUE(Contains(message, file.path() + ".lock is locked")) << message;
+  EXPECT_TRUE(Contains(message, "another master")) << message;
+  // The first store is unaffected.
+  EXPECT_TRUE((*first)->CreateRun(1, testing::SmallRunConfig(1), "b").ok());
+}
+
+TEST(LockTest, SecondOpenInAnotherProcessFailsSayingSo) {
+  TempStorePath file("lock-other");
+  Result<std::unique_ptr<Store>> first = Store::Open(file.path());
+  ASSERT_TRUE(first.ok()) << first.status().ToString();
+  const ChildReport child =
+      RunInChild([&] { return OpenAndClose(file.path()); });
+  EXPECT_EQ(child.exit_code, 1);
+  EXPECT_TRUE(Contains(child.text, file.path() + ".lock is locked"))
+      << child.text;
+}
+
+TEST(LockTest, LockIsReleasedWhenTheStoreIsDestroyed) {
+  TempStorePath file("lock-release");
+  {
+    Result<std::unique_ptr<Store>> first = Store::Open(file.path());
+    ASSERT_TRUE(first.ok()) << first.status().ToString();
+  }
+  const ChildReport child =
+      RunInChild([&] { return OpenAndClose(file.path()); });
+  EXPECT_EQ(child.exit_code, 0) << child.text;
+  Result<std::unique_ptr<Store>> again = Store::Open(file.path());
+  EXPECT_TRUE(again.ok()) << again.status().ToString();
+}
+
+TEST(LockTest, InMemoryStoresAreIndependentAndUnlocked) {
+  std::unique_ptr<Store> a = MemoryStore();
+  std::unique_ptr<Store> b = MemoryStore();
+  ASSERT_NE(a, nullptr);
+  ASSERT_NE(b, nullptr);
+  MakeRun(*a);
+  EXPECT_EQ(Value(*a, "SELECT COUNT(*) FROM runs"), "1");
+  EXPECT_EQ(Value(*b, "SELECT COUNT(*) FROM runs"), "0");
+}
+
+TEST(OpenForQueriesTest, ReadsWhileAWriterHoldsTheLock) {
+  TempStorePath file("query-live");
+  Result<std::unique_ptr<Store>> writer = Store::Open(file.path());
+  ASSERT_TRUE(writer.ok()) << writer.status().ToString();
+  const int64_t run = MakeRun(**writer);
+  ASSERT_TRUE((*writer)->AddIndividuals(run, {MakeIndividual(0, 0)}).ok());
+
+  Result<std::unique_ptr<Store>> reader = Store::OpenForQueries(file.path());
+  ASSERT_TRUE(reader.ok()) << reader.status().ToString();
+  Result<std::vector<RunRow>> runs = (*reader)->Runs();
+  ASSERT_TRUE(runs.ok()) << runs.status().ToString();
+  EXPECT_EQ(runs->size(), 1u);
+  Result<uint64_t> next = (*reader)->NextId(run);
+  ASSERT_TRUE(next.ok());
+  EXPECT_EQ(*next, 1u);
+
+  // The reader sees what the writer commits later.
+  ASSERT_TRUE((*writer)->AddIndividuals(run, {MakeIndividual(1, 0)}).ok());
+  next = (*reader)->NextId(run);
+  ASSERT_TRUE(next.ok());
+  EXPECT_EQ(*next, 2u);
+}
+
+TEST(OpenForQueriesTest, ReadsAStoreNoWriterHasOpen) {
+  TempStorePath file("query-closed");
+  {
+    Result<std::unique_ptr<Store>> writer = Store::Open(file.path());
+    ASSERT_TRUE(writer.ok()) << writer.status().ToString();
+    MakeRun(**writer);
+  }
+  Result<std::unique_ptr<Store>> reader = Store::OpenForQueries(file.path());
+  ASSERT_TRUE(reader.ok()) << reader.status().ToString();
+  Result<std::vector<RunRow>> runs = (*reader)->Runs();
+  ASSERT_TRUE(runs.ok()) << runs.status().ToString();
+  EXPECT_EQ(runs->size(), 1u);
+}
+
+TEST(OpenForQueriesTest, CannotWrite) {
+  TempStorePath file("query-write");
+  {
+    Result<std::unique_ptr<Store>> writer = Store::Open(file.path());
+    ASSERT_TRUE(writer.ok()) << writer.status().ToString();
+  }
+  Result<std::unique_ptr<Store>> reader = Store::OpenForQueries(file.path());
+  ASSERT_TRUE(reader.ok()) << reader.status().ToString();
+  EXPECT_FALSE((*reader)->CreateRun(1, testing::SmallRunConfig(1), "b").ok());
+}
+
+TEST(OpenForQueriesTest, RefusesAMissingFileWithoutCreatingIt) {
+  TempStorePath file("query-missing");
+  Result<std::unique_ptr<Store>> reader = Store::OpenForQueries(file.path());
+  ASSERT_FALSE(reader.ok());
+  EXPECT_EQ(reader.status().code(), StatusCode::kNotFound);
+  EXPECT_TRUE(Contains(reader.status().message(), file.path()))
+      << reader.status().message();
+  EXPECT_NE(access(file.path().c_str(), F_OK), 0);
+}
+
+TEST(OpenForQueriesTest, RefusesANewerSchemaVersion) {
+  TempStorePath file("query-newer");
+  const int newer = kSchemaVersion + 1;
+  MakeVersionedFile(file.path(), newer);
+  Result<std::unique_ptr<Store>> reader = Store::OpenForQueries(file.path());
+  ASSERT_FALSE(reader.ok());
+  const std::string& message = reader.status().message();
+  EXPECT_EQ(reader.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_TRUE(Contains(message, "version " + std::to_string(newer)))
+      << message;
+  EXPECT_TRUE(Contains(message, "reads version " +
+                                    std::to_string(kSchemaVersion)))
+      << message;
+  EXPECT_TRUE(Contains(message, "newer")) << message;
+}
+
+TEST(OpenForQueriesTest, RefusesAnOlderSchemaVersionWithoutUpgradingIt) {
+  TempStorePath file("query-older");
+  { std::ofstream touch(file.path()); }  // Version 0.
+  Result<std::unique_ptr<Store>> reader = Store::OpenForQueries(file.path());
+  ASSERT_FALSE(reader.ok());
+  const std::string& message = reader.status().message();
+  EXPECT_TRUE(Contains(message, "version 0")) << message;
+  EXPECT_TRUE(Contains(message, "upgrades")) << message;
+  EXPECT_EQ(UserVersion(file.path()), 0);
+}
+
+// docs/lineage.md describes every table and view under a "### `name`"
+// heading with a table whose rows start "| `column` | TYPE |" (TYPE only
+// for tables). This keeps the page and schema.cc in step.
+TEST(SchemaTest, DocumentationDescribesEveryTableViewAndColumn) {
+  std::ifstream doc(std::string(ANIMAT_SOURCE_DIR) + "/docs/lineage.md");
+  ASSERT_TRUE(doc) << "docs/lineage.md is missing";
+  // name -> documented {column, type} rows, in order.
+  std::map<std::string, std::vector<std::vector<std::string>>> documented;
+  std::string current;
+  std::string line;
+  while (std::getline(doc, line)) {
+    if (line.rfind("### `", 0) == 0) {
+      const size_t end = line.find('`', 5);
+      current = line.substr(5, end - 5);
+      documented[current];
+      continue;
+    }
+    if (line.rfind("## ", 0) == 0) current.clear();
+    if (current.empty() || line.rfind("| `", 0) != 0) continue;
+    const size_t end = line.find('`', 3);
+    const std::string column = line.substr(3, end - 3);
+    std::string type;
+    const size_t bar = line.find('|', end);
+    const size_t next = line.find('|', bar + 1);
+    if (bar != std::string::npos && next != std::string::npos) {
+      type = line.substr(bar + 1, next - bar - 1);
+      type.erase(0, type.find_first_not_of(' '));
+      type.erase(type.find_last_not_of(' ') + 1);
+    }
+    documented[current].push_back({column, type});
+  }
+
+  std::unique_ptr<Store> store = MemoryStore();
+  ASSERT_NE(store, nullptr);
+  std::map<std::string, std::vector<std::vector<std::string>>> actual;
+  for (const std::vector<std::string>& object :
+       Rows(*store,
+            "SELECT name, type FROM sqlite_schema WHERE type IN ('table', "
+            "'view') AND name NOT LIKE 'sqlite_%'")) {
+    const bool view = object[1] == "view";
+    std::vector<std::vector<std::string>>& columns = actual[object[0]];
+    for (const std::vector<std::string>& c :
+         Rows(*store, "SELECT name, type FROM pragma_table_info('" +
+                          object[0] + "') ORDER BY cid")) {
+      columns.push_back({c[0], view ? "" : c[1]});
+    }
+    // A view's columns have no declared type of their own: only their
+    // names are compared.
+    if (view && documented.count(object[0])) {
+      for (std::vector<std::string>& c : documented[object[0]]) c[1].clear();
+    }
+  }
+  EXPECT_EQ(documented, actual);
+}
+
+}  // namespace
+}  // namespace animat::lineage

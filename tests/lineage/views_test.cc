@@ -1,0 +1,353 @@
+// The lineage store's SQL views (best, ancestry, line_of_descent,
+// generation_statistics) and queries (master/lineage/queries.h), on small
+// pedigrees made by hand.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstdlib>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "master/lineage/queries.h"
+#include "master/lineage/store.h"
+#include "tests/lineage/lineage_test_util.h"
+
+namespace animat::lineage {
+namespace {
+
+using ::animat::testing::FailedEvaluation;
+using ::animat::testing::MakeIndividual;
+using ::animat::testing::MakeRun;
+using ::animat::testing::MemoryStore;
+using ::animat::testing::OkEvaluation;
+using ::animat::testing::Rows;
+
+using Table = std::vector<std::vector<std::string>>;
+
+// The diamond A, B -> C; A -> D; C, D -> E, and F made from E and A (so A
+// is F's parent and also its great-grandparent): ids A=1 ... F=6.
+constexpr uint64_t kA = 1, kB = 2, kC = 3, kD = 4, kE = 5, kF = 6;
+
+class ViewsTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    store_ = MemoryStore();
+    ASSERT_NE(store_, nullptr);
+    run_ = MakeRun(*store_);
+    ASSERT_TRUE(
+        store_
+            ->AddIndividuals(
+                run_,
+                {MakeIndividual(kA, 0), MakeIndividual(kB, 0),
+                 MakeIndividual(kC, 1, {kA, kB}, {"crossover"}),
+                 MakeIndividual(kD, 1, {kA}, {"sign"}),
+                 MakeIndividual(kE, 2, {kC, kD}, {"crossover", "coordinate"}),
+                 MakeIndividual(kF, 3, {kE, kA}, {"crossover"})})
+            .ok());
+    ASSERT_TRUE(store_
+                    ->RecordEvaluations(
+                        run_, {OkEvaluation(kA, 1.0), OkEvaluation(kB, 2.0),
+                               OkEvaluation(kC, 3.0), OkEvaluation(kD, 2.5),
+                               OkEvaluation(kE, 5.0), FailedEvaluation(kF)})
+                    .ok());
+  }
+
+  std::string Run() const { return std::to_string(run_); }
+
+  std::unique_ptr<Store> store_;
+  int64_t run_ = 0;
+};
+
+TEST_F(ViewsTest, AncestryGivesEachAncestorOnceAtItsShortestDistance) {
+  const Table rows = Rows(*store_,
+                          "SELECT descendant, ancestor, distance FROM ancestry"
+                          " WHERE run_id = " +
+                              Run() + " ORDER BY descendant, ancestor");
+  EXPECT_EQ(rows, (Table{{"3", "1", "1"},
+                         {"3", "2", "1"},
+                         {"4", "1", "1"},
+                         {"5", "1", "2"},
+                         {"5", "2", "2"},
+                         {"5", "3", "1"},
+                         {"5", "4", "1"},
+                         {"6", "1", "1"},
+                         {"6", "2", "3"},
+                         {"6", "3", "2"},
+                         {"6", "4", "2"},
+                         {"6", "5", "1"}}));
+}
+
+TEST_F(ViewsTest, BestIsTheHighestFitness) {
+  EXPECT_EQ(Rows(*store_, "SELECT run_id, id, generation, fitness FROM best"),
+            (Table{{Run(), "5", "2", "5.0"}}));
+}
+
+TEST_F(ViewsTest, BestBreaksTiesByLowestIdAndIsPerRun) {
+  // Another run where 8 and 7 tie (8 is written and evaluated first).
+  const int64_t other = MakeRun(*store_, 8);
+  ASSERT_TRUE(store_
+                  ->AddIndividuals(other, {MakeIndividual(8, 0),
+                                           MakeIndividual(7, 0),
+                                           MakeIndividual(9, 0)})
+                  .ok());
+  ASSERT_TRUE(store_
+                  ->RecordEvaluations(other, {OkEvaluation(8, 0.5),
+                                              OkEvaluation(7, 0.5),
+                                              OkEvaluation(9, 0.25)})
+                  .ok());
+  EXPECT_EQ(Rows(*store_, "SELECT run_id, id FROM best ORDER BY run_id"),
+            (Table{{Run(), "5"}, {std::to_string(other), "7"}}));
+  Result<Summary> best = Best(*store_, other);
+  ASSERT_TRUE(best.ok()) << best.status().ToString();
+  EXPECT_EQ(best->id, 7u);
+}
+
+TEST_F(ViewsTest, BestIgnoresFailedAndPendingIndividuals) {
+  // A new individual, not yet evaluated, and one that failed.
+  ASSERT_TRUE(store_
+                  ->AddIndividuals(run_, {MakeIndividual(20, 4, {kE}),
+                                          MakeIndividual(21, 4, {kE})})
+                  .ok());
+  ASSERT_TRUE(store_
+                  ->RecordEvaluations(
+                      run_, {FailedEvaluation(
+                                21, v1::EvaluationResult::NUMERICAL_FAILURE)})
+                  .ok());
+  EXPECT_EQ(Rows(*store_, "SELECT id FROM best"), (Table{{"5"}}));
+}
+
+TEST_F(ViewsTest, LineOfDescentFollowsFirstParentsFromTheBest) {
+  EXPECT_EQ(Rows(*store_,
+                 "SELECT run_id, step, id, generation, operators, fitness"
+                 " FROM line_of_descent ORDER BY run_id, step"),
+            (Table{{Run(), "0", "5", "2", "crossover,coordinate", "5.0"},
+                   {Run(), "1", "3", "1", "crossover", "3.0"},
+                   {Run(), "2", "1", "0", "random", "1.0"}}));
+}
+
+TEST_F(ViewsTest, GenerationStatisticsShowsEachGeneration) {
+  ASSERT_TRUE(store_->AddGeneration(run_, 0, {kA, kB}).ok());
+  ASSERT_TRUE(store_->AddGeneration(run_, 1, {kB, kC, kD}).ok());
+  GenerationStats stats;
+  stats.evaluated = 2;
+  stats.best_id = kB;
+  stats.best = 2.0;
+  stats.mean = 1.5;
+  stats.median = 1.5;
+  ASSERT_TRUE(store_->CompleteGeneration(run_, 0, {kB, kA}, stats).ok());
+  EXPECT_EQ(Rows(*store_,
+                 "SELECT generation, size, evaluated, failed, best_id,"
+                 " best_fitness, mean_fitness, median_fitness,"
+                 " completed_at IS NOT NULL FROM generation_statistics"
+                 " ORDER BY generation"),
+            (Table{{"0", "2", "2", "0", "2", "2.0", "1.5", "1.5", "1"},
+                   {"1", "3", "NULL", "NULL", "NULL", "NULL", "NULL", "NULL",
+                    "0"}}));
+}
+
+TEST_F(ViewsTest, BestQuery) {
+  Result<Summary> best = Best(*store_, run_);
+  ASSERT_TRUE(best.ok()) << best.status().ToString();
+  EXPECT_EQ(best->id, kE);
+  EXPECT_EQ(best->generation, 2);
+  EXPECT_EQ(best->operators, "crossover,coordinate");
+  EXPECT_EQ(best->status, "ok");
+  EXPECT_EQ(best->fitness, 5.0);
+}
+
+TEST_F(ViewsTest, BestQueryWithoutAnyFitnessIsNotFound) {
+  const int64_t other = MakeRun(*store_, 8);
+  ASSERT_TRUE(store_
+                  ->AddIndividuals(other, {MakeIndividual(0, 0),
+                                           MakeIndividual(1, 0)})
+                  .ok());
+  ASSERT_TRUE(store_->RecordEvaluations(other, {FailedEvaluation(0)}).ok());
+  Result<Summary> best = Best(*store_, other);
+  ASSERT_FALSE(best.ok());
+  EXPECT_EQ(best.status().code(), StatusCode::kNotFound);
+}
+
+TEST_F(ViewsTest, AncestorsNearestFirstThenById) {
+  Result<std::vector<Summary>> ancestors = Ancestors(*store_, run_, kF);
+  ASSERT_TRUE(ancestors.ok()) << ancestors.status().ToString();
+  std::vector<std::pair<int, uint64_t>> got;
+  for (const Summary& s : *ancestors) got.push_back({s.distance, s.id});
+  EXPECT_EQ(got, (std::vector<std::pair<int, uint64_t>>{
+                     {1, kA}, {1, kE}, {2, kC}, {2, kD}, {3, kB}}));
+  const Summary& c = (*ancestors)[2];
+  EXPECT_EQ(c.generation, 1);
+  EXPECT_EQ(c.operators, "crossover");
+  EXPECT_EQ(c.status, "ok");
+  EXPECT_EQ(c.fitness, 3.0);
+}
+
+TEST_F(ViewsTest, AncestorsOfTheDiamondsTip) {
+  Result<std::vector<Summary>> ancestors = Ancestors(*store_, run_, kE);
+  ASSERT_TRUE(ancestors.ok());
+  std::vector<std::pair<int, uint64_t>> got;
+  for (const Summary& s : *ancestors) got.push_back({s.distance, s.id});
+  EXPECT_EQ(got, (std::vector<std::pair<int, uint64_t>>{
+                     {1, kC}, {1, kD}, {2, kA}, {2, kB}}));
+}
+
+TEST_F(ViewsTest, AncestorsOfARootAreNone) {
+  Result<std::vector<Summary>> ancestors = Ancestors(*store_, run_, kA);
+  ASSERT_TRUE(ancestors.ok());
+  EXPECT_TRUE(ancestors->empty());
+}
+
+TEST_F(ViewsTest, AncestorsOfAnUnknownIdIsNotFound) {
+  Result<std::vector<Summary>> ancestors = Ancestors(*store_, run_, 99);
+  ASSERT_FALSE(ancestors.ok());
+  EXPECT_EQ(ancestors.status().code(), StatusCode::kNotFound);
+  // And in another run, even with the same ids.
+  const int64_t other = MakeRun(*store_, 8);
+  ancestors = Ancestors(*store_, other, kF);
+  ASSERT_FALSE(ancestors.ok());
+  EXPECT_EQ(ancestors.status().code(), StatusCode::kNotFound);
+}
+
+TEST_F(ViewsTest, AncestorsOfAPendingIndividual) {
+  ASSERT_TRUE(store_->AddIndividuals(run_, {MakeIndividual(30, 4, {kD})}).ok());
+  Result<std::vector<Summary>> ancestors = Ancestors(*store_, run_, 30);
+  ASSERT_TRUE(ancestors.ok());
+  ASSERT_EQ(ancestors->size(), 2u);
+  EXPECT_EQ((*ancestors)[0].id, kD);
+  EXPECT_EQ((*ancestors)[1].id, kA);
+  EXPECT_EQ((*ancestors)[1].distance, 2);
+}
+
+TEST_F(ViewsTest, ChooseRunDefaultsToTheLatest) {
+  Result<int64_t> chosen = ChooseRun(*store_, std::nullopt);
+  ASSERT_TRUE(chosen.ok());
+  EXPECT_EQ(*chosen, run_);
+  const int64_t other = MakeRun(*store_, 8);
+  chosen = ChooseRun(*store_, std::nullopt);
+  ASSERT_TRUE(chosen.ok());
+  EXPECT_EQ(*chosen, other);
+  chosen = ChooseRun(*store_, run_);
+  ASSERT_TRUE(chosen.ok());
+  EXPECT_EQ(*chosen, run_);
+  chosen = ChooseRun(*store_, other + 5);
+  ASSERT_FALSE(chosen.ok());
+  EXPECT_EQ(chosen.status().code(), StatusCode::kNotFound);
+
+  std::unique_ptr<Store> empty = MemoryStore();
+  ASSERT_NE(empty, nullptr);
+  chosen = ChooseRun(*empty, std::nullopt);
+  ASSERT_FALSE(chosen.ok());
+  EXPECT_EQ(chosen.status().code(), StatusCode::kNotFound);
+}
+
+// Splits RFC 4180 CSV (quoted fields may hold commas and doubled quotes)
+// into rows of fields; fails the test on malformed input.
+Table ParseCsv(const std::string& text) {
+  Table rows;
+  std::vector<std::string> row;
+  std::string field;
+  bool quoted = false;
+  bool field_started = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') {
+        field += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        field += c;
+      }
+    } else if (c == '"') {
+      EXPECT_TRUE(field.empty()) << "quote inside a field at " << i;
+      quoted = true;
+      field_started = true;
+    } else if (c == ',') {
+      row.push_back(field);
+      field.clear();
+      field_started = false;
+    } else if (c == '\n') {
+      row.push_back(field);
+      rows.push_back(row);
+      row.clear();
+      field.clear();
+      field_started = false;
+    } else {
+      field += c;
+      field_started = true;
+    }
+  }
+  EXPECT_FALSE(quoted) << "unterminated quote";
+  EXPECT_TRUE(field.empty() && !field_started && row.empty())
+      << "the last line has no newline";
+  return rows;
+}
+
+TEST(ExportAlifeTest, WritesTheStandardPhylogenyCsv) {
+  std::unique_ptr<Store> store = MemoryStore();
+  ASSERT_NE(store, nullptr);
+  const int64_t run = MakeRun(*store);
+  ASSERT_TRUE(
+      store
+          ->AddIndividuals(
+              run, {MakeIndividual(5, 0), MakeIndividual(0, 0),
+                    MakeIndividual(3, 0), MakeIndividual(1, 0),
+                    MakeIndividual(7, 1, {3, 5}, {"crossover", "sign"}),
+                    MakeIndividual(8, 1, {5, 3}, {"crossover"}),
+                    MakeIndividual(9, 2, {7}, {"coordinate"})})
+          .ok());
+  ASSERT_TRUE(store
+                  ->RecordEvaluations(
+                      run, {OkEvaluation(0, 0.1), FailedEvaluation(1),
+                            OkEvaluation(3, 2.0), OkEvaluation(5, 1.25),
+                            OkEvaluation(7, 4.5), OkEvaluation(8, 0.0)})
+                  .ok());
+  // Another run's individuals stay out.
+  const int64_t other = MakeRun(*store, 8);
+  ASSERT_TRUE(store->AddIndividuals(other, {MakeIndividual(4, 0)}).ok());
+
+  std::ostringstream out;
+  const Status status = ExportAlife(*store, run, out);
+  ASSERT_TRUE(status.ok()) << status.ToString();
+  EXPECT_EQ(out.str(),
+            "id,ancestor_list,origin_time,fitness,status,operators\n"
+            "0,\"[NONE]\",0,0.10000000000000001,ok,\"random\"\n"
+            "1,\"[NONE]\",0,,non_viable,\"random\"\n"
+            "3,\"[NONE]\",0,2,ok,\"random\"\n"
+            "5,\"[NONE]\",0,1.25,ok,\"random\"\n"
+            "7,\"[3,5]\",1,4.5,ok,\"crossover,sign\"\n"
+            "8,\"[5,3]\",1,0,ok,\"crossover\"\n"
+            "9,\"[7]\",2,,,\"coordinate\"\n");
+
+  const Table rows = ParseCsv(out.str());
+  ASSERT_EQ(rows.size(), 8u);
+  EXPECT_EQ(rows[0], (std::vector<std::string>{"id", "ancestor_list",
+                                               "origin_time", "fitness",
+                                               "status", "operators"}));
+  for (const std::vector<std::string>& row : rows) EXPECT_EQ(row.size(), 6u);
+  EXPECT_EQ(rows[5][1], "[3,5]");
+  EXPECT_EQ(rows[5][5], "crossover,sign");
+  EXPECT_EQ(rows[6][1], "[5,3]");
+  EXPECT_EQ(std::strtod(rows[1][3].c_str(), nullptr), 0.1);  // Exact.
+  uint64_t previous = 0;
+  for (size_t r = 2; r < rows.size(); ++r) {
+    const uint64_t id = std::strtoull(rows[r][0].c_str(), nullptr, 10);
+    EXPECT_GT(id, previous);
+    previous = id;
+  }
+}
+
+TEST(ExportAlifeTest, EmptyRunGivesTheHeaderOnly) {
+  std::unique_ptr<Store> store = MemoryStore();
+  ASSERT_NE(store, nullptr);
+  const int64_t run = MakeRun(*store);
+  std::ostringstream out;
+  ASSERT_TRUE(ExportAlife(*store, run, out).ok());
+  EXPECT_EQ(out.str(),
+            "id,ancestor_list,origin_time,fitness,status,operators\n");
+}
+
+}  // namespace
+}  // namespace animat::lineage
