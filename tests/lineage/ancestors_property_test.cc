@@ -161,8 +161,8 @@ TEST(AncestorsPropertyTest, AgreesWithBruteForceOnRandomPedigrees) {
               "run_id = " +
                   std::to_string(p.run) +
                   " ORDER BY descendant, distance, ancestor")) {
-      view.push_back({std::stoull(row[0]), std::stoi(row[1]),
-                      std::stoull(row[2])});
+      view.push_back(
+          {std::stoull(row[0]), std::stoi(row[1]), std::stoull(row[2])});
     }
     EXPECT_EQ(view, expected) << "run " << p.run;
 

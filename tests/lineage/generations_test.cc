@@ -29,12 +29,11 @@ class GenerationsTest : public ::testing::Test {
     store_ = MemoryStore();
     ASSERT_NE(store_, nullptr);
     run_ = MakeRun(*store_);
-    ASSERT_TRUE(store_
-                    ->AddIndividuals(run_, {MakeIndividual(0, 0),
-                                            MakeIndividual(1, 0),
-                                            MakeIndividual(2, 0),
-                                            MakeIndividual(3, 0)})
-                    .ok());
+    ASSERT_TRUE(
+        store_
+            ->AddIndividuals(run_, {MakeIndividual(0, 0), MakeIndividual(1, 0),
+                                    MakeIndividual(2, 0), MakeIndividual(3, 0)})
+            .ok());
   }
 
   std::unique_ptr<Store> store_;
@@ -124,14 +123,15 @@ TEST_F(GenerationsTest, CompleteGenerationSetsRanksAndStatistics) {
 
   EXPECT_EQ(Rows(*store_, "SELECT id, rank FROM members ORDER BY id"),
             (Table{{"0", "1"}, {"1", "3"}, {"2", "0"}, {"3", "2"}}));
-  const Table row = Rows(
-      *store_,
-      "SELECT run_id, generation, size, evaluated, failed, best_id,"
-      " best_fitness, mean_fitness, median_fitness, completed_at >= "
-      "created_at FROM generation_statistics");
-  EXPECT_EQ(row, (Table{{std::to_string(run_), "0", "4", "3", "1", "2",
-                         "0.75", "0.5", "0.4", "1"}}));
-  EXPECT_TRUE(IsUtcStamp(Value(*store_, "SELECT completed_at FROM generations")));
+  const Table row =
+      Rows(*store_,
+           "SELECT run_id, generation, size, evaluated, failed, best_id,"
+           " best_fitness, mean_fitness, median_fitness, completed_at >= "
+           "created_at FROM generation_statistics");
+  EXPECT_EQ(row, (Table{{std::to_string(run_), "0", "4", "3", "1", "2", "0.75",
+                         "0.5", "0.4", "1"}}));
+  EXPECT_TRUE(
+      IsUtcStamp(Value(*store_, "SELECT completed_at FROM generations")));
 
   Result<GenerationRow> g = store_->Generation(run_, 0);
   ASSERT_TRUE(g.ok());

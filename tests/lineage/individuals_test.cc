@@ -49,11 +49,11 @@ class IndividualsTest : public ::testing::Test {
 };
 
 TEST_F(IndividualsTest, AddedIndividualReadsBackWithParentsInOrder) {
-  ASSERT_TRUE(store_
-                  ->AddIndividuals(run_, {MakeIndividual(3, 0),
-                                          MakeIndividual(5, 0),
-                                          MakeIndividual(9, 0)})
-                  .ok());
+  ASSERT_TRUE(
+      store_
+          ->AddIndividuals(run_, {MakeIndividual(3, 0), MakeIndividual(5, 0),
+                                  MakeIndividual(9, 0)})
+          .ok());
   NewIndividual child =
       MakeIndividual(10, 1, {9, 3, 5}, {"crossover", "sign", "coordinate"});
   ASSERT_TRUE(store_->AddIndividuals(run_, {child}).ok());
@@ -101,14 +101,15 @@ TEST_F(IndividualsTest, RandomIndividualHasNoParents) {
 
 TEST_F(IndividualsTest, OperatorsAreJoinedByCommas) {
   ASSERT_TRUE(store_
-                  ->AddIndividuals(
-                      run_, {MakeIndividual(0, 0, {}, {}),
-                             MakeIndividual(1, 0, {}, {"random"}),
-                             MakeIndividual(2, 1, {0, 1}, {"crossover", "type",
-                                                           "duplication"})})
+                  ->AddIndividuals(run_, {MakeIndividual(0, 0, {}, {}),
+                                          MakeIndividual(1, 0, {}, {"random"}),
+                                          MakeIndividual(2, 1, {0, 1},
+                                                         {"crossover", "type",
+                                                          "duplication"})})
                   .ok());
-  EXPECT_EQ(Rows(*store_, "SELECT id, operators FROM individuals ORDER BY id"),
-            (Table{{"0", ""}, {"1", "random"}, {"2", "crossover,type,duplication"}}));
+  EXPECT_EQ(
+      Rows(*store_, "SELECT id, operators FROM individuals ORDER BY id"),
+      (Table{{"0", ""}, {"1", "random"}, {"2", "crossover,type,duplication"}}));
 }
 
 TEST_F(IndividualsTest, GenomeBlobRoundTripsBitForBit) {
@@ -135,10 +136,9 @@ TEST_F(IndividualsTest, GenomeBlobRoundTripsBitForBit) {
 TEST_F(IndividualsTest, AddIndividualsIsOneTransaction) {
   // A batch whose last individual repeats its first: nothing of it stays,
   // not even the parents written before the failure.
-  const Status status =
-      store_->AddIndividuals(run_, {MakeIndividual(10, 1, {1, 2}),
-                                    MakeIndividual(11, 1, {2}),
-                                    MakeIndividual(10, 1, {3})});
+  const Status status = store_->AddIndividuals(
+      run_, {MakeIndividual(10, 1, {1, 2}), MakeIndividual(11, 1, {2}),
+             MakeIndividual(10, 1, {3})});
   EXPECT_FALSE(status.ok());
   EXPECT_EQ(Value(*store_, "SELECT COUNT(*) FROM individuals"), "0");
   EXPECT_EQ(Value(*store_, "SELECT COUNT(*) FROM parents"), "0");
@@ -176,8 +176,7 @@ TEST_F(IndividualsTest, RunsHaveTheirOwnIds) {
   theirs.genome = MakeGenome(6, 77);
   ASSERT_TRUE(store_->AddIndividuals(run_, {mine}).ok());
   ASSERT_TRUE(store_->AddIndividuals(other, {theirs}).ok());
-  ASSERT_TRUE(
-      store_->RecordEvaluations(other, {OkEvaluation(0, 2.0)}).ok());
+  ASSERT_TRUE(store_->RecordEvaluations(other, {OkEvaluation(0, 2.0)}).ok());
   Result<IndividualRow> a = store_->Individual(run_, 0);
   Result<IndividualRow> b = store_->Individual(other, 0);
   ASSERT_TRUE(a.ok() && b.ok());
@@ -192,12 +191,11 @@ TEST_F(IndividualsTest, RunsHaveTheirOwnIds) {
 }
 
 TEST_F(IndividualsTest, RecordEvaluationsSetsEveryColumn) {
-  ASSERT_TRUE(store_
-                  ->AddIndividuals(run_, {MakeIndividual(0, 0),
-                                          MakeIndividual(1, 0),
-                                          MakeIndividual(2, 0),
-                                          MakeIndividual(3, 0)})
-                  .ok());
+  ASSERT_TRUE(
+      store_
+          ->AddIndividuals(run_, {MakeIndividual(0, 0), MakeIndividual(1, 0),
+                                  MakeIndividual(2, 0), MakeIndividual(3, 0)})
+          .ok());
   Evaluation ok = OkEvaluation(0, 0.1);  // Needs all 17 digits.
   ok.result.set_state_hash(0x00000000000000abULL);
   ok.wall_seconds = 1.5;
@@ -205,9 +203,10 @@ TEST_F(IndividualsTest, RecordEvaluationsSetsEveryColumn) {
   ASSERT_TRUE(
       store_
           ->RecordEvaluations(
-              run_, {ok, FailedEvaluation(1),
-                     FailedEvaluation(2, v1::EvaluationResult::NUMERICAL_FAILURE),
-                     FailedEvaluation(3, v1::EvaluationResult::NOT_EVALUATED)})
+              run_,
+              {ok, FailedEvaluation(1),
+               FailedEvaluation(2, v1::EvaluationResult::NUMERICAL_FAILURE),
+               FailedEvaluation(3, v1::EvaluationResult::NOT_EVALUATED)})
           .ok());
 
   const Table rows = Rows(
@@ -215,14 +214,13 @@ TEST_F(IndividualsTest, RecordEvaluationsSetsEveryColumn) {
       "SELECT id, status, reason, fitness = 0.1, cells, steps, wall_seconds,"
       " worker, state_hash, typeof(fitness) FROM individuals ORDER BY id");
   ASSERT_EQ(rows.size(), 4u);
-  EXPECT_EQ(rows[0], (std::vector<std::string>{"0", "ok", "", "1", "32",
-                                               "1000", "1.5", "node7:1234",
+  EXPECT_EQ(rows[0], (std::vector<std::string>{"0", "ok", "", "1", "32", "1000",
+                                               "1.5", "node7:1234",
                                                "00000000000000ab", "real"}));
   EXPECT_EQ(rows[1],
-            (std::vector<std::string>{"1", "non_viable",
-                                      "no path from input to output", "NULL",
-                                      "1", "0", "0.001", "host:43",
-                                      "0000000000000000", "null"}));
+            (std::vector<std::string>{
+                "1", "non_viable", "no path from input to output", "NULL", "1",
+                "0", "0.001", "host:43", "0000000000000000", "null"}));
   EXPECT_EQ(rows[2][1], "numerical_failure");
   EXPECT_EQ(rows[3][1], "not_evaluated");
   EXPECT_EQ(rows[3][9], "null");
@@ -246,13 +244,13 @@ TEST_F(IndividualsTest, RecordEvaluationsSetsEveryColumn) {
 }
 
 TEST_F(IndividualsTest, FirstEvaluationIsKept) {
-  ASSERT_TRUE(store_
-                  ->AddIndividuals(run_, {MakeIndividual(0, 0),
-                                          MakeIndividual(1, 0)})
-                  .ok());
-  ASSERT_TRUE(store_->RecordEvaluations(run_, {OkEvaluation(0, 0.5),
-                                               FailedEvaluation(1)})
-                  .ok());
+  ASSERT_TRUE(
+      store_->AddIndividuals(run_, {MakeIndividual(0, 0), MakeIndividual(1, 0)})
+          .ok());
+  ASSERT_TRUE(
+      store_
+          ->RecordEvaluations(run_, {OkEvaluation(0, 0.5), FailedEvaluation(1)})
+          .ok());
   const Table before = Rows(*store_, "SELECT * FROM individuals ORDER BY id");
 
   Evaluation again = OkEvaluation(0, 0.9);
@@ -271,24 +269,24 @@ TEST_F(IndividualsTest, FirstEvaluationIsKept) {
 
 TEST_F(IndividualsTest, FirstEvaluationInABatchIsKept) {
   ASSERT_TRUE(store_->AddIndividuals(run_, {MakeIndividual(0, 0)}).ok());
-  ASSERT_TRUE(store_->RecordEvaluations(run_, {OkEvaluation(0, 0.25),
-                                               OkEvaluation(0, 0.75)})
+  ASSERT_TRUE(store_
+                  ->RecordEvaluations(
+                      run_, {OkEvaluation(0, 0.25), OkEvaluation(0, 0.75)})
                   .ok());
   EXPECT_EQ(Value(*store_, "SELECT fitness FROM individuals"), "0.25");
 }
 
 TEST_F(IndividualsTest, RecordEvaluationsIsOneTransaction) {
-  ASSERT_TRUE(store_
-                  ->AddIndividuals(run_, {MakeIndividual(1, 0),
-                                          MakeIndividual(2, 0),
-                                          MakeIndividual(3, 0)})
-                  .ok());
+  ASSERT_TRUE(
+      store_
+          ->AddIndividuals(run_, {MakeIndividual(1, 0), MakeIndividual(2, 0),
+                                  MakeIndividual(3, 0)})
+          .ok());
   // Fault injection: the update of individual 3 fails.
   ASSERT_TRUE(store_->database()
-                  .Execute(
-                      "CREATE TEMP TRIGGER fail_three BEFORE UPDATE ON "
-                      "main.individuals WHEN NEW.id = 3 BEGIN SELECT "
-                      "RAISE(ABORT, 'injected failure'); END")
+                  .Execute("CREATE TEMP TRIGGER fail_three BEFORE UPDATE ON "
+                           "main.individuals WHEN NEW.id = 3 BEGIN SELECT "
+                           "RAISE(ABORT, 'injected failure'); END")
                   .ok());
   const Status status = store_->RecordEvaluations(
       run_, {OkEvaluation(1, 1.0), OkEvaluation(2, 2.0), OkEvaluation(3, 3.0)});
@@ -298,34 +296,35 @@ TEST_F(IndividualsTest, RecordEvaluationsIsOneTransaction) {
   Result<std::vector<uint64_t>> pending = store_->Unevaluated(run_);
   ASSERT_TRUE(pending.ok());
   EXPECT_EQ(*pending, (std::vector<uint64_t>{1, 2, 3}));
-  EXPECT_EQ(Value(*store_, "SELECT COUNT(*) FROM individuals WHERE worker "
-                           "IS NOT NULL OR fitness IS NOT NULL"),
+  EXPECT_EQ(Value(*store_,
+                  "SELECT COUNT(*) FROM individuals WHERE worker "
+                  "IS NOT NULL OR fitness IS NOT NULL"),
             "0");
 
   // Once the fault is gone the same batch goes through.
   ASSERT_TRUE(store_->database().Execute("DROP TRIGGER fail_three").ok());
-  EXPECT_TRUE(store_
-                  ->RecordEvaluations(run_, {OkEvaluation(1, 1.0),
-                                             OkEvaluation(2, 2.0),
-                                             OkEvaluation(3, 3.0)})
-                  .ok());
+  EXPECT_TRUE(
+      store_
+          ->RecordEvaluations(run_, {OkEvaluation(1, 1.0), OkEvaluation(2, 2.0),
+                                     OkEvaluation(3, 3.0)})
+          .ok());
   pending = store_->Unevaluated(run_);
   ASSERT_TRUE(pending.ok());
   EXPECT_TRUE(pending->empty());
 }
 
 TEST_F(IndividualsTest, UnevaluatedListsPendingIdsInIncreasingOrder) {
-  ASSERT_TRUE(store_
-                  ->AddIndividuals(run_, {MakeIndividual(7, 1),
-                                          MakeIndividual(2, 0),
-                                          MakeIndividual(5, 0),
-                                          MakeIndividual(11, 2)})
-                  .ok());
+  ASSERT_TRUE(
+      store_
+          ->AddIndividuals(run_, {MakeIndividual(7, 1), MakeIndividual(2, 0),
+                                  MakeIndividual(5, 0), MakeIndividual(11, 2)})
+          .ok());
   Result<std::vector<uint64_t>> pending = store_->Unevaluated(run_);
   ASSERT_TRUE(pending.ok());
   EXPECT_EQ(*pending, (std::vector<uint64_t>{2, 5, 7, 11}));
-  ASSERT_TRUE(store_->RecordEvaluations(run_, {OkEvaluation(5, 1.0),
-                                               FailedEvaluation(11)})
+  ASSERT_TRUE(store_
+                  ->RecordEvaluations(
+                      run_, {OkEvaluation(5, 1.0), FailedEvaluation(11)})
                   .ok());
   pending = store_->Unevaluated(run_);
   ASSERT_TRUE(pending.ok());
@@ -336,11 +335,11 @@ TEST_F(IndividualsTest, NextIdIsOneMoreThanTheHighest) {
   Result<uint64_t> next = store_->NextId(run_);
   ASSERT_TRUE(next.ok());
   EXPECT_EQ(*next, 0u);
-  ASSERT_TRUE(store_
-                  ->AddIndividuals(run_, {MakeIndividual(0, 0),
-                                          MakeIndividual(41, 0),
-                                          MakeIndividual(7, 0)})
-                  .ok());
+  ASSERT_TRUE(
+      store_
+          ->AddIndividuals(run_, {MakeIndividual(0, 0), MakeIndividual(41, 0),
+                                  MakeIndividual(7, 0)})
+          .ok());
   next = store_->NextId(run_);
   ASSERT_TRUE(next.ok());
   EXPECT_EQ(*next, 42u);
@@ -351,12 +350,12 @@ TEST_F(IndividualsTest, NextIdIsOneMoreThanTheHighest) {
 }
 
 TEST_F(IndividualsTest, IndividualsOfGivesOneGenerationInIncreasingId) {
-  ASSERT_TRUE(store_
-                  ->AddIndividuals(run_, {MakeIndividual(9, 1, {0}),
-                                          MakeIndividual(0, 0),
-                                          MakeIndividual(4, 1, {0, 0}),
-                                          MakeIndividual(6, 2, {4})})
-                  .ok());
+  ASSERT_TRUE(
+      store_
+          ->AddIndividuals(
+              run_, {MakeIndividual(9, 1, {0}), MakeIndividual(0, 0),
+                     MakeIndividual(4, 1, {0, 0}), MakeIndividual(6, 2, {4})})
+          .ok());
   ASSERT_TRUE(store_->RecordEvaluations(run_, {OkEvaluation(9, 1.25)}).ok());
   Result<std::vector<IndividualRow>> rows = store_->IndividualsOf(run_, 1);
   ASSERT_TRUE(rows.ok()) << rows.status().ToString();
@@ -376,15 +375,15 @@ TEST_F(IndividualsTest, IndividualsOfGivesOneGenerationInIncreasingId) {
 
 TEST_F(IndividualsTest, ScoresOfGivesOneGenerationsScores) {
   ASSERT_TRUE(store_
-                  ->AddIndividuals(run_, {MakeIndividual(3, 0),
-                                          MakeIndividual(1, 0),
-                                          MakeIndividual(2, 0),
-                                          MakeIndividual(8, 1, {1})})
+                  ->AddIndividuals(
+                      run_, {MakeIndividual(3, 0), MakeIndividual(1, 0),
+                             MakeIndividual(2, 0), MakeIndividual(8, 1, {1})})
                   .ok());
-  ASSERT_TRUE(store_->RecordEvaluations(run_, {OkEvaluation(1, 0.5),
-                                               FailedEvaluation(2),
-                                               OkEvaluation(8, 9.0)})
-                  .ok());
+  ASSERT_TRUE(
+      store_
+          ->RecordEvaluations(run_, {OkEvaluation(1, 0.5), FailedEvaluation(2),
+                                     OkEvaluation(8, 9.0)})
+          .ok());
   Result<std::vector<Score>> scores = store_->ScoresOf(run_, 0);
   ASSERT_TRUE(scores.ok());
   ASSERT_EQ(IdsOf(*scores), (std::vector<uint64_t>{1, 2, 3}));
@@ -398,18 +397,18 @@ TEST_F(IndividualsTest, ScoresOfGivesOneGenerationsScores) {
 
 TEST_F(IndividualsTest, MemberScoresFollowMembershipNotGeneration) {
   // Generation 1 holds the elite 0 (made for generation 0) and children.
-  ASSERT_TRUE(store_
-                  ->AddIndividuals(run_, {MakeIndividual(0, 0),
-                                          MakeIndividual(1, 0)})
-                  .ok());
+  ASSERT_TRUE(
+      store_->AddIndividuals(run_, {MakeIndividual(0, 0), MakeIndividual(1, 0)})
+          .ok());
   ASSERT_TRUE(store_->AddGeneration(run_, 0, {0, 1}).ok());
   ASSERT_TRUE(store_
-                  ->AddGeneration(run_, 1, {0, 3, 2},
-                                  {MakeIndividual(3, 1, {0}),
-                                   MakeIndividual(2, 1, {1, 0})})
+                  ->AddGeneration(
+                      run_, 1, {0, 3, 2},
+                      {MakeIndividual(3, 1, {0}), MakeIndividual(2, 1, {1, 0})})
                   .ok());
-  ASSERT_TRUE(store_->RecordEvaluations(run_, {OkEvaluation(0, 4.0),
-                                               OkEvaluation(3, 1.0)})
+  ASSERT_TRUE(store_
+                  ->RecordEvaluations(
+                      run_, {OkEvaluation(0, 4.0), OkEvaluation(3, 1.0)})
                   .ok());
   Result<std::vector<Score>> scores = store_->MemberScores(run_, 1);
   ASSERT_TRUE(scores.ok());

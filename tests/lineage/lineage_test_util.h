@@ -118,8 +118,8 @@ inline lineage::Evaluation OkEvaluation(uint64_t id, double fitness) {
 
 // A failed evaluation (no fitness).
 inline lineage::Evaluation FailedEvaluation(
-    uint64_t id, v1::EvaluationResult::Status status =
-                     v1::EvaluationResult::NON_VIABLE) {
+    uint64_t id,
+    v1::EvaluationResult::Status status = v1::EvaluationResult::NON_VIABLE) {
   lineage::Evaluation e;
   e.id = id;
   e.result.set_status(status);

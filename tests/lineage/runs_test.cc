@@ -143,9 +143,8 @@ TEST(RunsTest, UnreadableConfigurationIsReportedNotIgnored) {
   std::unique_ptr<Store> store = MemoryStore();
   ASSERT_NE(store, nullptr);
   ASSERT_TRUE(store->CreateRun(1, SmallRunConfig(1), "b").ok());
-  ASSERT_TRUE(store->database()
-                  .Execute("UPDATE runs SET config = X'ffffffff'")
-                  .ok());
+  ASSERT_TRUE(
+      store->database().Execute("UPDATE runs SET config = X'ffffffff'").ok());
   Result<std::vector<RunRow>> runs = store->Runs();
   ASSERT_FALSE(runs.ok());
   EXPECT_NE(runs.status().message().find("unreadable configuration"),

@@ -37,9 +37,8 @@ bool Contains(const std::string& text, const std::string& part) {
 void MakeVersionedFile(const std::string& path, int version) {
   Result<std::unique_ptr<sql::Database>> db = sql::Database::Open(path);
   ASSERT_TRUE(db.ok()) << db.status().ToString();
-  ASSERT_TRUE((*db)->Execute("PRAGMA user_version = " +
-                             std::to_string(version))
-                  .ok());
+  ASSERT_TRUE(
+      (*db)->Execute("PRAGMA user_version = " + std::to_string(version)).ok());
 }
 
 int UserVersion(const std::string& path) {
@@ -147,8 +146,9 @@ TEST(SchemaTest, EmptyFileIsMigratedFromVersionZero) {
   {
     Result<std::unique_ptr<Store>> store = Store::Open(file.path());
     ASSERT_TRUE(store.ok()) << store.status().ToString();
-    EXPECT_EQ(Value(**store, "SELECT COUNT(*) FROM sqlite_schema WHERE type = "
-                             "'table' AND name = 'individuals'"),
+    EXPECT_EQ(Value(**store,
+                    "SELECT COUNT(*) FROM sqlite_schema WHERE type = "
+                    "'table' AND name = 'individuals'"),
               "1");
   }
   EXPECT_EQ(UserVersion(file.path()), kSchemaVersion);
@@ -309,10 +309,9 @@ TEST(OpenForQueriesTest, RefusesANewerSchemaVersion) {
   ASSERT_FALSE(reader.ok());
   const std::string& message = reader.status().message();
   EXPECT_EQ(reader.status().code(), StatusCode::kInvalidArgument);
-  EXPECT_TRUE(Contains(message, "version " + std::to_string(newer)))
-      << message;
-  EXPECT_TRUE(Contains(message, "reads version " +
-                                    std::to_string(kSchemaVersion)))
+  EXPECT_TRUE(Contains(message, "version " + std::to_string(newer))) << message;
+  EXPECT_TRUE(
+      Contains(message, "reads version " + std::to_string(kSchemaVersion)))
       << message;
   EXPECT_TRUE(Contains(message, "newer")) << message;
 }
@@ -370,8 +369,8 @@ TEST(SchemaTest, DocumentationDescribesEveryTableViewAndColumn) {
     const bool view = object[1] == "view";
     std::vector<std::vector<std::string>>& columns = actual[object[0]];
     for (const std::vector<std::string>& c :
-         Rows(*store, "SELECT name, type FROM pragma_table_info('" +
-                          object[0] + "') ORDER BY cid")) {
+         Rows(*store, "SELECT name, type FROM pragma_table_info('" + object[0] +
+                          "') ORDER BY cid")) {
       columns.push_back({c[0], view ? "" : c[1]});
     }
     // A view's columns have no declared type of their own: only their

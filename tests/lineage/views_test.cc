@@ -36,16 +36,15 @@ class ViewsTest : public ::testing::Test {
     store_ = MemoryStore();
     ASSERT_NE(store_, nullptr);
     run_ = MakeRun(*store_);
-    ASSERT_TRUE(
-        store_
-            ->AddIndividuals(
-                run_,
-                {MakeIndividual(kA, 0), MakeIndividual(kB, 0),
-                 MakeIndividual(kC, 1, {kA, kB}, {"crossover"}),
-                 MakeIndividual(kD, 1, {kA}, {"sign"}),
-                 MakeIndividual(kE, 2, {kC, kD}, {"crossover", "coordinate"}),
-                 MakeIndividual(kF, 3, {kE, kA}, {"crossover"})})
-            .ok());
+    ASSERT_TRUE(store_
+                    ->AddIndividuals(
+                        run_, {MakeIndividual(kA, 0), MakeIndividual(kB, 0),
+                               MakeIndividual(kC, 1, {kA, kB}, {"crossover"}),
+                               MakeIndividual(kD, 1, {kA}, {"sign"}),
+                               MakeIndividual(kE, 2, {kC, kD},
+                                              {"crossover", "coordinate"}),
+                               MakeIndividual(kF, 3, {kE, kA}, {"crossover"})})
+                    .ok());
     ASSERT_TRUE(store_
                     ->RecordEvaluations(
                         run_, {OkEvaluation(kA, 1.0), OkEvaluation(kB, 2.0),
@@ -87,15 +86,15 @@ TEST_F(ViewsTest, BestIsTheHighestFitness) {
 TEST_F(ViewsTest, BestBreaksTiesByLowestIdAndIsPerRun) {
   // Another run where 8 and 7 tie (8 is written and evaluated first).
   const int64_t other = MakeRun(*store_, 8);
+  ASSERT_TRUE(
+      store_
+          ->AddIndividuals(other, {MakeIndividual(8, 0), MakeIndividual(7, 0),
+                                   MakeIndividual(9, 0)})
+          .ok());
   ASSERT_TRUE(store_
-                  ->AddIndividuals(other, {MakeIndividual(8, 0),
-                                           MakeIndividual(7, 0),
-                                           MakeIndividual(9, 0)})
-                  .ok());
-  ASSERT_TRUE(store_
-                  ->RecordEvaluations(other, {OkEvaluation(8, 0.5),
-                                              OkEvaluation(7, 0.5),
-                                              OkEvaluation(9, 0.25)})
+                  ->RecordEvaluations(
+                      other, {OkEvaluation(8, 0.5), OkEvaluation(7, 0.5),
+                              OkEvaluation(9, 0.25)})
                   .ok());
   EXPECT_EQ(Rows(*store_, "SELECT run_id, id FROM best ORDER BY run_id"),
             (Table{{Run(), "5"}, {std::to_string(other), "7"}}));
@@ -137,14 +136,14 @@ TEST_F(ViewsTest, GenerationStatisticsShowsEachGeneration) {
   stats.mean = 1.5;
   stats.median = 1.5;
   ASSERT_TRUE(store_->CompleteGeneration(run_, 0, {kB, kA}, stats).ok());
-  EXPECT_EQ(Rows(*store_,
-                 "SELECT generation, size, evaluated, failed, best_id,"
-                 " best_fitness, mean_fitness, median_fitness,"
-                 " completed_at IS NOT NULL FROM generation_statistics"
-                 " ORDER BY generation"),
-            (Table{{"0", "2", "2", "0", "2", "2.0", "1.5", "1.5", "1"},
-                   {"1", "3", "NULL", "NULL", "NULL", "NULL", "NULL", "NULL",
-                    "0"}}));
+  EXPECT_EQ(
+      Rows(*store_,
+           "SELECT generation, size, evaluated, failed, best_id,"
+           " best_fitness, mean_fitness, median_fitness,"
+           " completed_at IS NOT NULL FROM generation_statistics"
+           " ORDER BY generation"),
+      (Table{{"0", "2", "2", "0", "2", "2.0", "1.5", "1.5", "1"},
+             {"1", "3", "NULL", "NULL", "NULL", "NULL", "NULL", "NULL", "0"}}));
 }
 
 TEST_F(ViewsTest, BestQuery) {
@@ -159,10 +158,10 @@ TEST_F(ViewsTest, BestQuery) {
 
 TEST_F(ViewsTest, BestQueryWithoutAnyFitnessIsNotFound) {
   const int64_t other = MakeRun(*store_, 8);
-  ASSERT_TRUE(store_
-                  ->AddIndividuals(other, {MakeIndividual(0, 0),
-                                           MakeIndividual(1, 0)})
-                  .ok());
+  ASSERT_TRUE(
+      store_
+          ->AddIndividuals(other, {MakeIndividual(0, 0), MakeIndividual(1, 0)})
+          .ok());
   ASSERT_TRUE(store_->RecordEvaluations(other, {FailedEvaluation(0)}).ok());
   Result<Summary> best = Best(*store_, other);
   ASSERT_FALSE(best.ok());
@@ -289,21 +288,20 @@ TEST(ExportAlifeTest, WritesTheStandardPhylogenyCsv) {
   std::unique_ptr<Store> store = MemoryStore();
   ASSERT_NE(store, nullptr);
   const int64_t run = MakeRun(*store);
+  ASSERT_TRUE(store
+                  ->AddIndividuals(
+                      run, {MakeIndividual(5, 0), MakeIndividual(0, 0),
+                            MakeIndividual(3, 0), MakeIndividual(1, 0),
+                            MakeIndividual(7, 1, {3, 5}, {"crossover", "sign"}),
+                            MakeIndividual(8, 1, {5, 3}, {"crossover"}),
+                            MakeIndividual(9, 2, {7}, {"coordinate"})})
+                  .ok());
   ASSERT_TRUE(
       store
-          ->AddIndividuals(
-              run, {MakeIndividual(5, 0), MakeIndividual(0, 0),
-                    MakeIndividual(3, 0), MakeIndividual(1, 0),
-                    MakeIndividual(7, 1, {3, 5}, {"crossover", "sign"}),
-                    MakeIndividual(8, 1, {5, 3}, {"crossover"}),
-                    MakeIndividual(9, 2, {7}, {"coordinate"})})
+          ->RecordEvaluations(run, {OkEvaluation(0, 0.1), FailedEvaluation(1),
+                                    OkEvaluation(3, 2.0), OkEvaluation(5, 1.25),
+                                    OkEvaluation(7, 4.5), OkEvaluation(8, 0.0)})
           .ok());
-  ASSERT_TRUE(store
-                  ->RecordEvaluations(
-                      run, {OkEvaluation(0, 0.1), FailedEvaluation(1),
-                            OkEvaluation(3, 2.0), OkEvaluation(5, 1.25),
-                            OkEvaluation(7, 4.5), OkEvaluation(8, 0.0)})
-                  .ok());
   // Another run's individuals stay out.
   const int64_t other = MakeRun(*store, 8);
   ASSERT_TRUE(store->AddIndividuals(other, {MakeIndividual(4, 0)}).ok());
@@ -323,9 +321,9 @@ TEST(ExportAlifeTest, WritesTheStandardPhylogenyCsv) {
 
   const Table rows = ParseCsv(out.str());
   ASSERT_EQ(rows.size(), 8u);
-  EXPECT_EQ(rows[0], (std::vector<std::string>{"id", "ancestor_list",
-                                               "origin_time", "fitness",
-                                               "status", "operators"}));
+  EXPECT_EQ(rows[0],
+            (std::vector<std::string>{"id", "ancestor_list", "origin_time",
+                                      "fitness", "status", "operators"}));
   for (const std::vector<std::string>& row : rows) EXPECT_EQ(row.size(), 6u);
   EXPECT_EQ(rows[5][1], "[3,5]");
   EXPECT_EQ(rows[5][5], "crossover,sign");
