@@ -110,6 +110,58 @@ CREATE VIEW line_of_descent AS
   SELECT line.run_id, line.step, i.id, i.generation, i.operators, i.fitness
   FROM line JOIN individuals i ON i.run_id = line.run_id AND i.id = line.id;
 )sql",
+    // 1 -> 2: individuals becomes a rowid table. In a WITHOUT ROWID table
+    // a row of about 1 kB (the genome) spills into an overflow page of its
+    // own, so each individual took 5 kB and reading any column of a run
+    // read them all. Generations get an index for the run loop's reads.
+    R"sql(
+DROP VIEW best;
+DROP VIEW line_of_descent;
+CREATE TABLE individuals_v2 (
+  run_id       INTEGER NOT NULL REFERENCES runs (run_id),
+  id           INTEGER NOT NULL,
+  generation   INTEGER NOT NULL,
+  operators    TEXT    NOT NULL,
+  genome       BLOB    NOT NULL,
+  genome_hash  TEXT    NOT NULL,
+  elements     INTEGER NOT NULL,
+  created_at   TEXT    NOT NULL,
+  status       TEXT,
+  reason       TEXT,
+  fitness      REAL,
+  cells        INTEGER,
+  steps        INTEGER,
+  wall_seconds REAL,
+  worker       TEXT,
+  state_hash   TEXT,
+  evaluated_at TEXT,
+  PRIMARY KEY (run_id, id)
+);
+INSERT INTO individuals_v2 SELECT * FROM individuals ORDER BY run_id, id;
+DROP TABLE individuals;
+ALTER TABLE individuals_v2 RENAME TO individuals;
+CREATE INDEX individuals_to_evaluate ON individuals (run_id, id)
+  WHERE status IS NULL;
+CREATE INDEX individuals_by_generation ON individuals (run_id, generation, id);
+
+CREATE VIEW best AS
+  SELECT run_id, id, generation, fitness FROM (
+    SELECT run_id, id, generation, fitness,
+           ROW_NUMBER() OVER (PARTITION BY run_id
+                              ORDER BY fitness DESC, id) AS place
+    FROM individuals WHERE status = 'ok')
+  WHERE place = 1;
+
+CREATE VIEW line_of_descent AS
+  WITH RECURSIVE line (run_id, id, step) AS (
+    SELECT run_id, id, 0 FROM best
+    UNION ALL
+    SELECT line.run_id, p.parent, line.step + 1
+    FROM line JOIN parents p
+      ON p.run_id = line.run_id AND p.child = line.id AND p.position = 0)
+  SELECT line.run_id, line.step, i.id, i.generation, i.operators, i.fitness
+  FROM line JOIN individuals i ON i.run_id = line.run_id AND i.id = line.id;
+)sql",
 };
 
 constexpr int kKnown = static_cast<int>(std::size(kMigrations));
@@ -125,7 +177,11 @@ Result<int> UserVersion(sql::Database& db) {
 
 }  // namespace
 
-Status Migrate(sql::Database& db) {
+Status Migrate(sql::Database& db, int target) {
+  if (target < 0 || target > kSchemaVersion) {
+    return Status::InvalidArgument("no lineage schema version " +
+                                   std::to_string(target));
+  }
   Result<int> version = UserVersion(db);
   if (!version.ok()) return version.status();
   if (*version > kSchemaVersion) {
@@ -134,7 +190,7 @@ Status Migrate(sql::Database& db) {
         " was written by a newer animat; this build knows up to " +
         std::to_string(kSchemaVersion));
   }
-  for (int v = *version; v < kSchemaVersion; ++v) {
+  for (int v = *version; v < target; ++v) {
     Status status = db.Execute(
         std::string("BEGIN IMMEDIATE;") + kMigrations[v] +
         "PRAGMA user_version = " + std::to_string(v + 1) + ";COMMIT;");

@@ -9,12 +9,13 @@
 namespace animat::lineage {
 
 // The schema this build writes (PRAGMA user_version).
-inline constexpr int kSchemaVersion = 1;
+inline constexpr int kSchemaVersion = 2;
 
-// Brings `db` from its user_version to kSchemaVersion, one migration at a
-// time, each in its own transaction. Refuses a store written by a newer
-// build (a higher version), saying both versions.
-Status Migrate(sql::Database& db);
+// Brings `db` from its user_version to `target` (tests ask for older
+// versions), one migration at a time, each in its own transaction. Refuses
+// a store written by a newer build (a higher version), saying both
+// versions; does nothing to a store already at `target` or above.
+Status Migrate(sql::Database& db, int target = kSchemaVersion);
 
 }  // namespace animat::lineage
 

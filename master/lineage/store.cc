@@ -377,10 +377,12 @@ Result<std::vector<Score>> Store::ScoresOf(int64_t run, int generation) {
 }
 
 Result<std::vector<Score>> Store::MemberScores(int64_t run, int generation) {
+  // Ordered by m.id, not i.id: the latter leads SQLite to walk every
+  // individual of the run in key order instead of the generation's members.
   Result<sql::Statement> select = db_->Prepare(
       "SELECT i.id, i.status, i.fitness FROM members m JOIN individuals i"
       " ON i.run_id = m.run_id AND i.id = m.id"
-      " WHERE m.run_id = ? AND m.generation = ? ORDER BY i.id");
+      " WHERE m.run_id = ? AND m.generation = ? ORDER BY m.id");
   if (!select.ok()) return select.status();
   select->Bind(1, run).Bind(2, static_cast<int64_t>(generation));
   return ReadScores(*select);

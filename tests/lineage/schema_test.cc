@@ -109,6 +109,7 @@ TEST(SchemaTest, NewStoreHasCurrentVersionTablesViewsAndIndexes) {
            "SELECT type, name FROM sqlite_schema WHERE name NOT LIKE "
            "'sqlite_%' ORDER BY type, name");
   const std::vector<std::vector<std::string>> expected = {
+      {"index", "individuals_by_generation"},
       {"index", "individuals_to_evaluate"},
       {"index", "parents_by_parent"},
       {"table", "generations"},
@@ -167,6 +168,110 @@ TEST(SchemaTest, ReopeningKeepsDataAndDoesNotMigrateAgain) {
   EXPECT_EQ(Value(**store, "PRAGMA user_version"),
             std::to_string(kSchemaVersion));
   EXPECT_EQ(Value(**store, "SELECT COUNT(*) FROM individuals"), "1");
+}
+
+// A store written by schema version 1 (individuals WITHOUT ROWID) is
+// upgraded in place: every row and column survives, the views answer, and
+// individuals is a rowid table with the generation index.
+TEST(SchemaTest, VersionOneStoreIsUpgradedKeepingEveryRow) {
+  TempStorePath file("v1");
+  const std::string columns =
+      "run_id, id, generation, operators, quote(genome), genome_hash,"
+      " elements, created_at, status, reason, quote(fitness), cells, steps,"
+      " quote(wall_seconds), worker, state_hash, evaluated_at";
+  {
+    Result<std::unique_ptr<sql::Database>> db =
+        sql::Database::Open(file.path());
+    ASSERT_TRUE(db.ok()) << db.status().ToString();
+    ASSERT_TRUE(Migrate(**db, 1).ok());
+    const Status written = (*db)->Execute(
+        "INSERT INTO runs VALUES (1, 5, x'0a00', 'text', '00000000000000ff',"
+        " 'build', '2026-01-01T00:00:00.000Z', NULL, 'running');"
+        "INSERT INTO individuals VALUES"
+        " (1, 0, 0, 'random', x'0a0b0c', '0000000000000001', 3, 't0', 'ok', '',"
+        "  0.1000000000000000055511151231257827, 32, 6600, 0.25, 'h:1',"
+        "  '00000000000000aa', 'e0'),"
+        " (1, 1, 1, 'copy', x'0a0b0d', '0000000000000002', 3, 't1', NULL,"
+        "  NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL),"
+        " (1, 2, 1, 'sign', x'0a0b0e', '0000000000000003', 3, 't2', 'ok', '',"
+        "  2.5, 32, 6600, 0.5, 'h:2', '00000000000000bb', 'e2');"
+        "INSERT INTO parents VALUES (1, 1, 0, 0), (1, 2, 0, 0);");
+    ASSERT_TRUE(written.ok()) << written.ToString();
+  }
+  std::vector<std::vector<std::string>> before;
+  {
+    Result<std::unique_ptr<sql::Database>> db =
+        sql::Database::Open(file.path(), /*read_only=*/true);
+    ASSERT_TRUE(db.ok());
+    Result<sql::Statement> select =
+        (*db)->Prepare("SELECT " + columns + " FROM individuals ORDER BY id");
+    ASSERT_TRUE(select.ok());
+    for (;;) {
+      Result<bool> row = select->Step();
+      ASSERT_TRUE(row.ok());
+      if (!*row) break;
+      std::vector<std::string> values;
+      for (int c = 0; c < 17; ++c) {
+        values.push_back(select->IsNull(c) ? "NULL" : select->Text(c));
+      }
+      before.push_back(values);
+    }
+  }
+  ASSERT_EQ(before.size(), 3u);
+  ASSERT_EQ(UserVersion(file.path()), 1);
+
+  Result<std::unique_ptr<Store>> store = Store::Open(file.path());
+  ASSERT_TRUE(store.ok()) << store.status().ToString();
+  EXPECT_EQ(UserVersion(file.path()), kSchemaVersion);
+  EXPECT_EQ(
+      Rows(**store, "SELECT " + columns + " FROM individuals ORDER BY id"),
+      before);
+  EXPECT_EQ(Value(**store, "SELECT id FROM best"), "2");
+  EXPECT_EQ(Rows(**store, "SELECT step, id FROM line_of_descent ORDER BY step"),
+            (std::vector<std::vector<std::string>>{{"0", "2"}, {"1", "0"}}));
+  EXPECT_EQ(Value(**store,
+                  "SELECT sql LIKE '%WITHOUT ROWID%' FROM sqlite_schema"
+                  " WHERE name = 'individuals'"),
+            "0");
+  EXPECT_EQ(Value(**store,
+                  "SELECT COUNT(*) FROM sqlite_schema WHERE type = 'index'"
+                  " AND name IN ('individuals_by_generation',"
+                  " 'individuals_to_evaluate')"),
+            "2");
+  Result<std::vector<uint64_t>> pending = (*store)->Unevaluated(1);
+  ASSERT_TRUE(pending.ok());
+  EXPECT_EQ(*pending, std::vector<uint64_t>{1});
+}
+
+// An individual of a realistic genome (about 1 kB) costs about its size on
+// disk: rows are not spilled into overflow pages of their own.
+TEST(SchemaTest, IndividualsTakeAboutTheirOwnSizeOnDisk) {
+  TempStorePath file("size");
+  Result<std::unique_ptr<Store>> store = Store::Open(file.path());
+  ASSERT_TRUE(store.ok()) << store.status().ToString();
+  const int64_t run = MakeRun(**store);
+  constexpr int kIndividuals = 2000;
+  std::vector<NewIndividual> batch;
+  std::vector<Evaluation> results;
+  for (int id = 0; id < kIndividuals; ++id) {
+    NewIndividual n = MakeIndividual(static_cast<uint64_t>(id), 0);
+    n.genome = ::animat::testing::MakeGenome(45, static_cast<uint64_t>(id));
+    batch.push_back(std::move(n));
+    results.push_back(
+        ::animat::testing::OkEvaluation(static_cast<uint64_t>(id), 1.0 + id));
+  }
+  ASSERT_TRUE((*store)->AddIndividuals(run, batch).ok());
+  ASSERT_TRUE((*store)->RecordEvaluations(run, results).ok());
+  const double content =
+      std::stod(Value(**store,
+                      "SELECT SUM(LENGTH(genome)) + 200.0 * COUNT(*)"
+                      " FROM individuals"));
+  const double used =
+      std::stod(Value(**store,
+                      "SELECT page_count * page_size"
+                      " FROM pragma_page_count, pragma_page_size"));
+  EXPECT_GT(content, kIndividuals * 800.0);  // Genomes of about 1 kB.
+  EXPECT_LT(used, 2.0 * content) << "content " << content << " bytes";
 }
 
 TEST(SchemaTest, MigrateIsANoOpOnACurrentStore) {
