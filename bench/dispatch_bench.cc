@@ -16,36 +16,28 @@
 //   the ratio.
 //
 // The workers are this build's animat-worker (ANIMAT_WORKER_PATH), started
-// with posix_spawn; their log goes to --worker-log.
-#include <fcntl.h>
-#include <signal.h>
-#include <spawn.h>
+// with posix_spawn (bench/worker_processes.h); their log goes to
+// --worker-log.
 #include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
-#include <csignal>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
 #include <map>
 #include <memory>
 #include <string>
-#include <thread>
 #include <vector>
 #include <zmq.hpp>
 
 #include <CLI/CLI.hpp>
 
+#include "bench/worker_processes.h"
 #include "common/evaluation/model_config.h"
 #include "common/genome/genome_proto.h"
 #include "common/io/proto_file.h"
 #include "common/protocol/protocol.h"
 #include "master/dispatcher.h"
-
-extern char** environ;
 
 namespace animat {
 namespace {
@@ -81,89 +73,11 @@ struct Options {
   bool verbose = false;
 };
 
-// Worker processes; stopped with SIGTERM (then SIGKILL) when destroyed.
-class Workers {
+// Worker processes of this run's options.
+class Workers : public bench::WorkerProcesses {
  public:
   Workers(const Options& options, Dispatcher* dispatcher)
-      : options_(options), dispatcher_(dispatcher) {}
-  ~Workers() { Stop(); }
-
-  bool Spawn(int count, int threads, bool null_evaluation) {
-    for (int i = 0; i < count; ++i) {
-      std::vector<std::string> args = {options_.worker, "--connect",
-                                       dispatcher_->endpoint(), "--threads",
-                                       std::to_string(threads)};
-      if (null_evaluation) args.push_back("--null-evaluation");
-      std::vector<char*> argv;
-      for (std::string& a : args) argv.push_back(a.data());
-      argv.push_back(nullptr);
-      posix_spawn_file_actions_t actions;
-      posix_spawn_file_actions_init(&actions);
-      posix_spawn_file_actions_addopen(&actions, STDERR_FILENO,
-                                       options_.worker_log.c_str(),
-                                       O_WRONLY | O_CREAT | O_APPEND, 0644);
-      pid_t pid = 0;
-      const int error = posix_spawn(&pid, options_.worker.c_str(), &actions,
-                                    nullptr, argv.data(), environ);
-      posix_spawn_file_actions_destroy(&actions);
-      if (error != 0) {
-        std::fprintf(stderr, "cannot start %s: %s\n", options_.worker.c_str(),
-                     std::strerror(error));
-        return false;
-      }
-      pids_.push_back(pid);
-    }
-    // Serve until every worker has said hello.
-    const Clock::time_point start = Clock::now();
-    while (dispatcher_->workers() < pids_.size()) {
-      dispatcher_->Poll(10);
-      for (pid_t pid : pids_) {
-        int status = 0;
-        if (waitpid(pid, &status, WNOHANG) == pid) {
-          std::fprintf(stderr,
-                       "a worker exited (status %d; 3: refused) before "
-                       "joining; see --worker-log\n",
-                       WIFEXITED(status) ? WEXITSTATUS(status) : -1);
-          pids_.erase(std::find(pids_.begin(), pids_.end(), pid));
-          return false;
-        }
-      }
-      if (SecondsSince(start) > 10) {
-        std::fprintf(stderr, "workers did not join within 10 s\n");
-        return false;
-      }
-    }
-    return true;
-  }
-
-  // SIGTERM, serving the dispatcher meanwhile so goodbyes are heard.
-  void Stop() {
-    for (pid_t pid : pids_) kill(pid, SIGTERM);
-    const Clock::time_point start = Clock::now();
-    while (!pids_.empty()) {
-      dispatcher_->Poll(5);
-      for (size_t i = 0; i < pids_.size();) {
-        int status = 0;
-        if (waitpid(pids_[i], &status, WNOHANG) == pids_[i]) {
-          pids_.erase(pids_.begin() + static_cast<long>(i));
-        } else {
-          ++i;
-        }
-      }
-      if (SecondsSince(start) > 5) {
-        for (pid_t pid : pids_) {
-          kill(pid, SIGKILL);
-          waitpid(pid, nullptr, 0);
-        }
-        pids_.clear();
-      }
-    }
-  }
-
- private:
-  const Options& options_;
-  Dispatcher* dispatcher_;
-  std::vector<pid_t> pids_;
+      : WorkerProcesses(options.worker, options.worker_log, dispatcher) {}
 };
 
 std::unique_ptr<Dispatcher> MakeDispatcher(zmq::context_t* context,

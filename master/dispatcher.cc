@@ -214,6 +214,7 @@ void Dispatcher::Greet(const std::string& identity, const v1::Hello& hello,
   worker.name = name;
   worker.threads = static_cast<int>(
       std::clamp<uint32_t>(hello.threads(), 1, protocol::kMaxThreads));
+  worker.null_evaluation = hello.null_evaluation();
   worker.last_heard = Clock::now();
   strangers_.erase(identity);
   v1::Envelope envelope;
@@ -268,6 +269,7 @@ void Dispatcher::Collect(const std::string& identity, WorkerState& worker,
     completion.worker = worker.name;
     completion.wall_seconds = r.wall_seconds();
     completion.attempts = entry.attempts;
+    completion.null_evaluation = worker.null_evaluation;
     done->push_back(std::move(completion));
     pending_.erase(it);
     ++stats_.completed;

@@ -56,6 +56,9 @@ struct Completion {
   std::string worker;       // "host:pid" of the worker that evaluated it.
   double wall_seconds = 0;  // On the worker.
   int attempts = 0;         // Dispatches that ended without a result.
+  // From a worker in null-evaluation mode (accept_null_workers only): the
+  // result is NOT_EVALUATED and nothing was simulated.
+  bool null_evaluation = false;
 };
 
 struct DispatcherStats {
@@ -99,6 +102,7 @@ class Dispatcher {
     std::string name;  // host:pid
     int threads = 1;
     int credit = 0;
+    bool null_evaluation = false;
     Clock::time_point last_heard;
     Clock::time_point last_sent;
     bool send_failed = false;  // The last send failed (logged once).

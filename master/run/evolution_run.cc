@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "common/base/rng.h"
 #include "common/genome/genome_proto.h"
 #include "common/protocol/protocol.h"
 
@@ -28,6 +29,10 @@ std::vector<Scored> ToScored(const std::vector<lineage::Score>& scores) {
 }
 
 }  // namespace
+
+double NullEvaluationFitness(uint64_t seed, uint64_t id) {
+  return RandomStream(seed, id, StreamPurpose::kNullFitness).NextDouble();
+}
 
 Result<std::unique_ptr<EvolutionRun>> EvolutionRun::Start(
     lineage::Store* store, const RunSettings& settings, LogSink log) {
@@ -133,6 +138,19 @@ Status EvolutionRun::Run(
   double last_flush = SteadySeconds();
   while (status.ok() && !finished_ && !stop.load()) {
     for (Completion& c : dispatcher->Poll(100)) {
+      if (c.null_evaluation) {
+        if (!score_null_evaluations_) {
+          status = Status::Internal(
+              "a null-evaluation worker's result for individual " +
+              std::to_string(c.individual) +
+              " reached a run that does not score them; not recorded");
+          break;
+        }
+        c.result.Clear();
+        c.result.set_status(v1::EvaluationResult::OK);
+        c.result.set_fitness(
+            NullEvaluationFitness(params().seed, c.individual));
+      }
       lineage::Evaluation e;
       e.id = c.individual;
       e.result = std::move(c.result);
@@ -141,6 +159,7 @@ Status EvolutionRun::Run(
       unsaved_.push_back(std::move(e));
       ++evaluations_;
     }
+    if (!status.ok()) break;
     const double now = SteadySeconds();
     if (!unsaved_.empty() &&
         (now - last_flush >= kFlushSeconds || unsaved_.size() >= kFlushCount ||

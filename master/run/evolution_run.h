@@ -35,6 +35,12 @@ namespace animat {
 // Initial candidates are made this many at a time.
 inline constexpr int kCandidateBlock = 1024;
 
+// The stand-in fitness of individual `id` evaluated by a null-evaluation
+// worker, for benchmarks of the master (see
+// EvolutionRun::ScoreNullEvaluations): uniform in [0, 1), a pure function
+// of the run's seed and the id.
+double NullEvaluationFitness(uint64_t seed, uint64_t id);
+
 // One line's worth of progress, after each generation completes.
 struct GenerationReport {
   int generation = 0;
@@ -71,6 +77,14 @@ class EvolutionRun {
       Dispatcher* dispatcher, const std::atomic<bool>& stop,
       const std::function<void(const GenerationReport&)>& progress = nullptr);
 
+  // Benchmarks of the master only (bench/master_bench.cc); no command
+  // line reaches it. Results of null-evaluation workers (the dispatcher
+  // must accept them) are then recorded as OK with the fitness
+  // NullEvaluationFitness(seed, id), through the same store writes as real
+  // results, so selection proceeds generation after generation. Without
+  // it, such a result is never recorded: Run fails, saying so.
+  void ScoreNullEvaluations() { score_null_evaluations_ = true; }
+
   const ModelConfig& model_config() const { return settings_.model; }
   const EvolutionParams& params() const { return settings_.evolution; }
   int64_t run_id() const { return run_id_; }
@@ -103,6 +117,7 @@ class EvolutionRun {
   int64_t run_id_;
   LogSink log_;
   bool finished_ = false;
+  bool score_null_evaluations_ = false;
   std::vector<lineage::Evaluation> unsaved_;  // Results not yet committed.
   int64_t evaluations_ = 0;
   double started_ = 0;      // Seconds, steady clock.

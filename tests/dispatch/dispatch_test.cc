@@ -47,6 +47,7 @@ TEST_F(DispatchTest, EveryIndividualCompletesOnceAsEvaluatedDirectly) {
 
   ExpectEachCompletedOnceAsEvaluatedDirectly(population);
   EXPECT_EQ(CompletingWorkers(), (std::set<std::string>{a.name(), b.name()}));
+  for (const Completion& c : completions_) EXPECT_FALSE(c.null_evaluation);
   const DispatcherStats& stats = dispatcher_->stats();
   EXPECT_EQ(stats.completed, 40);
   EXPECT_EQ(stats.dispatched, 40);  // Nothing sent twice.
@@ -470,6 +471,7 @@ TEST_F(DispatchTest, NullEvaluationWorkersAreRefusedUnlessAccepted) {
     EXPECT_EQ(c.result.status(), v1::EvaluationResult::NOT_EVALUATED);
     EXPECT_EQ(c.result.reason(), "null-evaluation worker");
     EXPECT_FALSE(c.result.has_fitness());
+    EXPECT_TRUE(c.null_evaluation);
     EXPECT_EQ(c.worker, accepted.name());
   }
   for (const Individual& individual : population) {

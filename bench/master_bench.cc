@@ -1,0 +1,388 @@
+// The master's throughput, end to end (docs/benchmarks.md, "Master
+// throughput"):
+//
+//   build/bin/animat-master-bench [--population P] [--generations G]
+//       [--workers W] [--threads T] [--db FILE] [--endpoint ENDPOINT]
+//
+// The real master path: animat-master's run loop (EvolutionRun) makes each
+// individual, commits it to the lineage store (an SQLite file on disk,
+// opened as animat-master opens it, so WAL and the same pragmas), submits
+// it to a Dispatcher bound on loopback TCP (or --endpoint), which leases
+// it to real `animat-worker --null-evaluation` processes; their answers
+// come back over ZeroMQ and are recorded in batched transactions. Null
+// workers simulate nothing, so the figure is what the master sustains.
+//
+// Null results carry no fitness: the run scores them with
+// EvolutionRun::ScoreNullEvaluations (no command line reaches it), which
+// records each as OK with a pseudo-random fitness of the seed and id, by
+// the same store write as a real result. So the initial population is the
+// first P candidates and every later generation is selected, varied, made
+// and recorded as in a real run.
+//
+// The figure: individuals in the store once the run has finished, divided
+// by the seconds EvolutionRun::Run took (its start to the commit of the
+// last result). Before it is printed, the store is reopened and checked:
+// every individual evaluated, with its expected fitness, a worker and a
+// time; every offspring with its parents; every generation complete, with
+// its ranked members. A failed check exits 1.
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string>
+#include <vector>
+#include <zmq.hpp>
+
+#include <google/protobuf/stubs/logging.h>
+#include <CLI/CLI.hpp>
+
+#include "bench/worker_processes.h"
+#include "master/dispatcher.h"
+#include "master/lineage/store.h"
+#include "master/run/evolution_run.h"
+
+namespace animat {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// User + system CPU seconds of this process, or of its waited-for children.
+double CpuSeconds(int who) {
+  rusage usage = {};
+  getrusage(who, &usage);
+  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(usage.ru_utime.tv_usec +
+                                    usage.ru_stime.tv_usec);
+}
+
+struct Options {
+  int population = 10000;
+  int generations = 20;
+  uint64_t seed = 1;
+  int workers = 2;
+  int threads = 64;
+  std::string db;  // Empty: a temporary file, removed afterwards.
+  std::string endpoint = "tcp://127.0.0.1:*";
+  std::string worker = ANIMAT_WORKER_PATH;
+  std::string worker_log = "/dev/null";
+  bool verbose = false;
+};
+
+void RemoveStore(const std::string& path) {
+  for (const char* suffix : {"", "-wal", "-shm", ".lock"}) {
+    std::remove((path + suffix).c_str());
+  }
+}
+
+long long FileBytes(const std::string& path) {
+  FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr) return 0;
+  std::fseek(file, 0, SEEK_END);
+  const long long bytes = std::ftell(file);
+  std::fclose(file);
+  return bytes;
+}
+
+// The integers of the one row `sql` gives, with ?1 bound to `run`.
+Result<std::vector<int64_t>> Integers(sql::Database& db, const char* sql,
+                                      int64_t run, int columns) {
+  Result<sql::Statement> select = db.Prepare(sql);
+  if (!select.ok()) return select.status();
+  select->Bind(1, run);
+  Result<bool> row = select->Step();
+  if (!row.ok()) return row.status();
+  if (!*row) return Status::NotFound(std::string("no row from: ") + sql);
+  std::vector<int64_t> values;
+  for (int c = 0; c < columns; ++c) values.push_back(select->Int(c));
+  return values;
+}
+
+struct Counts {
+  int64_t made = 0;      // Individuals in the store.
+  int64_t recorded = 0;  // Of those, evaluated.
+};
+
+// Reopens the store for queries and checks that it holds the whole run.
+// Returns how many individuals it holds, or what is missing.
+Result<Counts> Verify(const std::string& path, int64_t run,
+                      const Options& options) {
+  Result<std::unique_ptr<lineage::Store>> store =
+      lineage::Store::OpenForQueries(path);
+  if (!store.ok()) return store.status();
+  sql::Database& db = (*store)->database();
+  std::vector<std::string> problems;
+  const auto expect = [&](const std::string& what, int64_t found,
+                          int64_t wanted) {
+    if (found != wanted) {
+      problems.push_back(what + ": " + std::to_string(found) + ", expected " +
+                         std::to_string(wanted));
+    }
+  };
+
+  Result<std::vector<int64_t>> runs = Integers(
+      db,
+      "SELECT COUNT(*), SUM(state = 'finished') FROM runs WHERE run_id = ?1",
+      run, 2);
+  if (!runs.ok()) return runs.status();
+  expect("finished runs", (*runs)[1], 1);
+
+  // Every individual recorded: evaluated OK with a fitness, by a worker, at
+  // a time, with its genome. Only initial candidates not chosen may still
+  // have been on their way when the run ended (a resumed run would send
+  // them again).
+  Result<std::vector<int64_t>> individuals =
+      Integers(db,
+               "SELECT COUNT(*), COUNT(status), SUM(status = 'ok'),"
+               " COUNT(fitness), SUM(worker <> ''), COUNT(evaluated_at),"
+               " SUM(length(genome) > 0 AND elements > 0), SUM(generation > 0),"
+               " SUM(status IS NULL AND (generation > 0 OR id IN"
+               " (SELECT id FROM members WHERE run_id = ?1)))"
+               " FROM individuals WHERE run_id = ?1",
+               run, 9);
+  if (!individuals.ok()) return individuals.status();
+  const int64_t made = (*individuals)[0];
+  const int64_t count = (*individuals)[1];
+  expect("individuals with status ok", (*individuals)[2], count);
+  expect("individuals with a fitness", (*individuals)[3], count);
+  expect("individuals with a worker", (*individuals)[4], count);
+  expect("individuals with an evaluation time", (*individuals)[5], count);
+  expect("individuals with a genome", (*individuals)[6], made);
+  const int64_t offspring = (*individuals)[7];
+  const int64_t per_generation = options.population - EvolutionParams{}.elite;
+  expect("offspring", offspring,
+         static_cast<int64_t>(options.generations - 1) * per_generation);
+  expect("members or offspring not evaluated", (*individuals)[8], 0);
+
+  // Each fitness is the one its id gives: the result recorded is the
+  // individual's own.
+  Result<sql::Statement> fitness = db.Prepare(
+      "SELECT id, fitness FROM individuals WHERE run_id = ?1 ORDER BY id");
+  if (!fitness.ok()) return fitness.status();
+  fitness->Bind(1, run);
+  int64_t wrong = 0;
+  for (;;) {
+    Result<bool> row = fitness->Step();
+    if (!row.ok()) return row.status();
+    if (!*row) break;
+    const uint64_t id = static_cast<uint64_t>(fitness->Int(0));
+    wrong += !fitness->IsNull(1) &&
+             fitness->Double(1) != NullEvaluationFitness(options.seed, id);
+  }
+  expect("individuals with another fitness than their own", wrong, 0);
+
+  // Every offspring has its parents.
+  Result<std::vector<int64_t>> orphans =
+      Integers(db,
+               "SELECT COUNT(*) FROM individuals i WHERE i.run_id = ?1"
+               " AND i.generation > 0 AND NOT EXISTS (SELECT 1 FROM parents p"
+               " WHERE p.run_id = i.run_id AND p.child = i.id)",
+               run, 1);
+  if (!orphans.ok()) return orphans.status();
+  expect("offspring without parents", (*orphans)[0], 0);
+
+  // Every generation complete, its members ranked.
+  Result<std::vector<int64_t>> generations = Integers(
+      db,
+      "SELECT COUNT(*), COUNT(completed_at), SUM(evaluated) FROM generations"
+      " WHERE run_id = ?1",
+      run, 3);
+  if (!generations.ok()) return generations.status();
+  const int64_t members = static_cast<int64_t>(options.generations) *
+                          static_cast<int64_t>(options.population);
+  expect("generations", (*generations)[0], options.generations);
+  expect("complete generations", (*generations)[1], options.generations);
+  expect("members evaluated OK", (*generations)[2], members);
+  Result<std::vector<int64_t>> ranked = Integers(
+      db, "SELECT COUNT(*), COUNT(rank) FROM members WHERE run_id = ?1", run,
+      2);
+  if (!ranked.ok()) return ranked.status();
+  expect("members", (*ranked)[0], members);
+  expect("ranked members", (*ranked)[1], members);
+
+  if (!problems.empty()) {
+    std::string message = path + ": the store does not hold the run:";
+    for (const std::string& p : problems) message += " " + p + ";";
+    return Status::Internal(message);
+  }
+  return Counts{made, count};
+}
+
+int Bench(const Options& options) {
+  const bool temporary = options.db.empty();
+  std::string path = options.db;
+  if (temporary) {
+    const char* dir = std::getenv("TMPDIR");
+    path = std::string(dir != nullptr && *dir != '\0' ? dir : "/tmp") +
+           "/animat-master-bench-" + std::to_string(getpid()) + ".db";
+    RemoveStore(path);
+  }
+  const LogSink quiet = [](std::string_view) {};
+  const LogSink log = options.verbose ? Prefixed("master", StderrSink) : quiet;
+
+  RunSettings settings;
+  settings.evolution.seed = options.seed;
+  settings.evolution.population = options.population;
+  settings.evolution.generations = options.generations;
+  std::printf(
+      "master throughput: population %d, %d generations, %d null-evaluation "
+      "workers of %d threads (credit %d), %s, store %s\n",
+      options.population, options.generations, options.workers, options.threads,
+      options.workers * options.threads * protocol::kPrefetch,
+      options.endpoint.c_str(), path.c_str());
+
+  Result<std::unique_ptr<lineage::Store>> store = lineage::Store::Open(path);
+  if (!store.ok()) {
+    std::fprintf(stderr, "%s\n", store.status().ToString().c_str());
+    return 1;
+  }
+  Result<std::unique_ptr<EvolutionRun>> run =
+      EvolutionRun::Start(store->get(), settings, log);
+  if (!run.ok()) {
+    std::fprintf(stderr, "%s\n", run.status().ToString().c_str());
+    return 1;
+  }
+  (*run)->ScoreNullEvaluations();
+  const int64_t run_id = (*run)->run_id();
+
+  zmq::context_t context(1);
+  DispatcherOptions dispatcher_options;
+  dispatcher_options.endpoint = options.endpoint;
+  dispatcher_options.accept_null_workers = true;
+  dispatcher_options.log =
+      options.verbose ? Prefixed("dispatcher", StderrSink) : quiet;
+  Result<std::unique_ptr<Dispatcher>> dispatcher =
+      Dispatcher::Create(&context, dispatcher_options, (*run)->model_config());
+  if (!dispatcher.ok()) {
+    std::fprintf(stderr, "%s\n", dispatcher.status().ToString().c_str());
+    return 1;
+  }
+  bench::WorkerProcesses workers(options.worker, options.worker_log,
+                                 dispatcher->get());
+  if (!workers.Spawn(options.workers, options.threads, true)) return 1;
+
+  // Seconds from the start of Run to the end of each generation.
+  std::vector<double> ends;
+  const std::atomic<bool> stop{false};
+  const double cpu = CpuSeconds(RUSAGE_SELF);
+  const Clock::time_point start = Clock::now();
+  const Status status = (*run)->Run(
+      dispatcher->get(), stop,
+      [&](const GenerationReport&) { ends.push_back(SecondsSince(start)); });
+  const double seconds = SecondsSince(start);
+  const double master_cpu = CpuSeconds(RUSAGE_SELF) - cpu;
+  if (!status.ok()) {
+    std::fprintf(stderr, "%s\n", status.ToString().c_str());
+    return 1;
+  }
+  const DispatcherStats stats = (*dispatcher)->stats();
+  workers.Stop();
+  const double workers_cpu = CpuSeconds(RUSAGE_CHILDREN);
+  const bool finished = (*run)->finished();
+  run->reset();
+  store->reset();  // Closes the store (a checkpoint) and frees its lock.
+  if (!finished) {
+    std::fprintf(stderr, "the run did not finish\n");
+    return 1;
+  }
+
+  Result<Counts> counts = Verify(path, run_id, options);
+  const long long bytes = FileBytes(path);
+  if (temporary) RemoveStore(path);
+  if (!counts.ok()) {
+    std::fprintf(stderr, "%s\n", counts.status().ToString().c_str());
+    return 1;
+  }
+  const int64_t* count = &counts->recorded;
+  if (stats.completed != *count) {
+    std::fprintf(stderr,
+                 "the dispatcher completed %lld individuals, the store holds "
+                 "%lld\n",
+                 static_cast<long long>(stats.completed),
+                 static_cast<long long>(*count));
+    return 1;
+  }
+  const double rate = static_cast<double>(*count) / seconds;
+  std::printf(
+      "  %lld individuals (%lld dispatches) in %.3f s; master CPU %.0f%%, "
+      "workers' CPU %.0f%%; store %.1f MB (%.0f bytes per individual)\n",
+      static_cast<long long>(*count), static_cast<long long>(stats.dispatched),
+      seconds, 100 * master_cpu / seconds, 100 * workers_cpu / seconds,
+      1e-6 * bytes, static_cast<double>(bytes) / static_cast<double>(*count));
+  if (counts->made > counts->recorded) {
+    std::printf(
+        "  (%lld initial candidates not chosen were still on their way at the "
+        "end; not counted)\n",
+        static_cast<long long>(counts->made - counts->recorded));
+  }
+  if (ends.size() >= 2) {
+    const double later =
+        (ends.back() - ends.front()) / static_cast<double>(ends.size() - 1);
+    std::printf(
+        "  initial population (%d of the first candidates) %.3f s; then "
+        "%.3f s per generation (%.0f offspring/s)\n",
+        options.population, ends.front(), later,
+        static_cast<double>(options.population - EvolutionParams{}.elite) /
+            later);
+  }
+  std::printf(
+      "  verified: every individual in the store, evaluated, with its "
+      "fitness, worker and time; offspring with parents; generations "
+      "complete and ranked\n");
+  std::printf(
+      "MASTER: %.0f individuals/s made, committed, dispatched and recorded "
+      "(target >= 50000): %s\n",
+      rate, rate >= 50000 ? "met" : "NOT met");
+  return 0;
+}
+
+}  // namespace
+}  // namespace animat
+
+int main(int argc, char** argv) {
+  animat::Options options;
+  CLI::App app{
+      "animat-master-bench: the master's run loop, dispatcher and lineage "
+      "store with null-evaluation workers"};
+  app.add_option("--population", options.population,
+                 "Individuals per generation")
+      ->check(CLI::Range(4, 10000000))
+      ->capture_default_str();
+  app.add_option("--generations", options.generations, "Generations")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  app.add_option("--seed", options.seed, "The run's seed")
+      ->capture_default_str();
+  app.add_option("--workers", options.workers, "Null-evaluation workers")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  app.add_option("--threads", options.threads,
+                 "Threads each null worker claims (sets its credit)")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
+  app.add_option("--db", options.db,
+                 "The lineage store to write (a new file, kept); default: a "
+                 "temporary file in $TMPDIR or /tmp, removed afterwards");
+  app.add_option("--endpoint", options.endpoint,
+                 "Where the dispatcher binds (tcp://... or ipc://...)")
+      ->capture_default_str();
+  app.add_option("--worker", options.worker, "The animat-worker binary")
+      ->capture_default_str();
+  app.add_option("--worker-log", options.worker_log,
+                 "Where the workers' log lines go")
+      ->capture_default_str();
+  app.add_flag("--verbose", options.verbose,
+               "The master's and dispatcher's log on stderr");
+  CLI11_PARSE(app, argc, argv);
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // Each figure as it comes.
+  google::protobuf::SetLogHandler(nullptr);
+  return animat::Bench(options);
+}

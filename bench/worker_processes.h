@@ -1,0 +1,47 @@
+// Real animat-worker processes for the benchmarks, started with
+// posix_spawn beside an in-process Dispatcher and stopped with SIGTERM
+// (then SIGKILL after 5 s) when Stop is called or the object is destroyed.
+//
+// Not thread-safe: the thread that serves the dispatcher uses it. The
+// dispatcher must outlive the object.
+#ifndef ANIMAT_BENCH_WORKER_PROCESSES_H_
+#define ANIMAT_BENCH_WORKER_PROCESSES_H_
+
+#include <sys/types.h>
+
+#include <string>
+#include <vector>
+
+#include "master/dispatcher.h"
+
+namespace animat::bench {
+
+class WorkerProcesses {
+ public:
+  // `binary`: the animat-worker to run; its standard error is appended to
+  // `log` (a path; "/dev/null" discards it).
+  WorkerProcesses(std::string binary, std::string log, Dispatcher* dispatcher);
+  ~WorkerProcesses() { Stop(); }
+  WorkerProcesses(const WorkerProcesses&) = delete;
+  WorkerProcesses& operator=(const WorkerProcesses&) = delete;
+
+  // Starts `count` workers of `threads` threads connecting to the
+  // dispatcher's endpoint and serves the dispatcher until all have said
+  // hello. False, having said why on stderr, when one cannot start, exits
+  // (a refused worker exits 3) or they do not join within 10 s.
+  bool Spawn(int count, int threads, bool null_evaluation);
+
+  // SIGTERM to every worker, serving the dispatcher meanwhile so goodbyes
+  // are heard; SIGKILL to those still running after 5 s.
+  void Stop();
+
+ private:
+  std::string binary_;
+  std::string log_;
+  Dispatcher* dispatcher_;
+  std::vector<pid_t> pids_;
+};
+
+}  // namespace animat::bench
+
+#endif  // ANIMAT_BENCH_WORKER_PROCESSES_H_
