@@ -14,7 +14,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   clang-format
   clang-14 libclang-rt-14-dev
-  slurm-wlm munge
+  slurm-wlm munge systemd
 )
 
 missing=()

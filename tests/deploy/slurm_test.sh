@@ -45,26 +45,13 @@ fail() {
   exit 1
 }
 
+# shellcheck source=tests/deploy/lib.sh
+source "$source_dir/tests/deploy/lib.sh"
+
 eval "$("$source_dir/deploy/slurm/local-cluster.sh" start "$cluster")"
 export SLURM_CONF
 
-# Small enough for CI, long enough to interrupt twice (a generation takes
-# a fraction of a second).
-cat > "$work/run.txtpb" <<'CONF'
-model { evaluation { motion_steps: 1200 } }
-evolution {
-  seed: 7
-  population: 40
-  generations: 24
-  elite: 2
-}
-CONF
-
-generations_done() {  # completed generations in the store, 0 if none yet
-  sqlite3 "file:$1?mode=ro" \
-    "SELECT COUNT(*) FROM generations WHERE completed_at IS NOT NULL" \
-    2>/dev/null || echo 0
-}
+write_small_config "$work/run.txtpb"
 
 job_state() {  # the job's state, empty once it has left the queue
   squeue -h -j "$1" -o %T 2>/dev/null || true
@@ -76,14 +63,6 @@ wait_job_gone() {
     sleep 0.1
   done
   fail "job $1 did not end"
-}
-
-wait_generations() {  # store, at least this many completed generations
-  for _ in $(seq 3000); do
-    [ "$(generations_done "$1")" -ge "$2" ] && return 0
-    sleep 0.1
-  done
-  fail "the store did not reach $2 completed generations"
 }
 
 submit() {
@@ -105,7 +84,7 @@ scancel "$job"
 wait_job_gone "$job"
 first=$(generations_done "$work/run.db")
 echo "slurm_test: cancelled after $first generations"
-[ "$first" -lt 24 ] || fail "the run finished before it was cancelled"
+[ "$first" -lt "$small_config_generations" ] || fail "the run finished before it was cancelled"
 
 # 2. Resubmit; the walltime warning (SIGTERM to the batch script alone).
 job=$(submit)
@@ -115,33 +94,22 @@ scancel --batch --signal=TERM "$job"
 wait_job_gone "$job"
 second=$(generations_done "$work/run.db")
 echo "slurm_test: stopped by the walltime signal after $second generations"
-[ "$second" -lt 24 ] || fail "the run finished before the walltime signal"
+[ "$second" -lt "$small_config_generations" ] || fail "the run finished before the walltime signal"
 grep -q "master exited with status 0" "$work/job-$job.log" ||
   fail "the master did not exit 0 on the walltime signal"
-[ "$(sqlite3 "$work/run.db" "SELECT state FROM runs")" = running ] ||
+[ "$(run_state "$work/run.db")" = running ] ||
   fail "the store does not show a resumable run"
 
 # 3. Resubmit; let it finish.
 job=$(submit)
 echo "slurm_test: job $job resubmitted"
 wait_job_gone "$job"
-[ "$(sqlite3 "$work/run.db" "SELECT state FROM runs")" = finished ] ||
+[ "$(run_state "$work/run.db")" = finished ] ||
   fail "the run did not finish"
 grep -q "resuming" "$work/job-$job.log" || fail "the last job did not resume"
 
 # The same individuals, parents, evaluations and generations as the
-# uninterrupted run (wall times, workers and timestamps aside).
-digest() {
-  sqlite3 "file:$1?mode=ro" "
-    SELECT id, generation, operators, hex(genome), status, reason,
-           quote(fitness), cells, steps, state_hash FROM individuals
-    ORDER BY id;
-    SELECT * FROM parents ORDER BY child, position;
-    SELECT generation, id, rank FROM members ORDER BY generation, id;
-    SELECT generation, size, evaluated, failed, best_id,
-           quote(best_fitness), quote(mean_fitness), quote(median_fitness)
-    FROM generations ORDER BY generation;" | sha256sum
-}
+# uninterrupted run.
 [ "$(digest "$work/run.db")" = "$(digest "$work/reference.db")" ] ||
   fail "the interrupted run differs from the uninterrupted one"
 echo "slurm_test: $(sqlite3 "$work/run.db" "SELECT COUNT(*) FROM individuals") individuals identical to the uninterrupted run"
