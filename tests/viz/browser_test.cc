@@ -1,0 +1,284 @@
+// The page of `animat render` in headless Chromium: the real binary, a
+// real (short) simulation, the real browser. Skipped, saying so, only when
+// Chromium is not installed (scripts/setup.sh installs it; CI runs this).
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "animat/v1/trace.pb.h"
+#include "common/io/proto_file.h"
+#include "tests/test_util.h"
+#include "viz/actuation.h"
+
+namespace animat {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int exit_code = -1;
+  std::string output;  // Standard output only.
+};
+
+Outcome Shell(const std::string& command) {
+  Outcome run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return run;
+  char buffer[4096];
+  size_t n;
+  while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0) {
+    run.output.append(buffer, n);
+  }
+  const int status = pclose(pipe);
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+// $ANIMAT_CHROMIUM, else chromium or chromium-browser on the PATH.
+std::optional<std::string> FindChromium() {
+  if (const char* chosen = std::getenv("ANIMAT_CHROMIUM")) return chosen;
+  const char* path = std::getenv("PATH");
+  if (path == nullptr) return std::nullopt;
+  for (const char* name : {"chromium", "chromium-browser"}) {
+    std::string dirs = path;
+    size_t start = 0;
+    while (start <= dirs.size()) {
+      const size_t end = std::min(dirs.find(':', start), dirs.size());
+      const fs::path candidate =
+          fs::path(dirs.substr(start, end - start)) / name;
+      if (access(candidate.c_str(), X_OK) == 0) return candidate.string();
+      start = end + 1;
+    }
+  }
+  return std::nullopt;
+}
+
+// What the page shows of one frame, read from its DOM.
+struct Shown {
+  std::string frame, phase, step, text;  // #step's data attributes, text.
+  std::string playing;                   // body's data-playing.
+  std::vector<std::string> cells;        // Class of each circle of #cells.
+};
+
+// The value of attribute `name` in the start tag `tag`, or "".
+std::string Attribute(const std::string& tag, const std::string& name) {
+  const std::string key = " " + name + "=\"";
+  const size_t at = tag.find(key);
+  if (at == std::string::npos) return "";
+  const size_t start = at + key.size();
+  return tag.substr(start, tag.find('"', start) - start);
+}
+
+// The start tag beginning with `prefix`, or "".
+std::string StartTag(const std::string& dom, const std::string& prefix,
+                     size_t from = 0) {
+  const size_t at = dom.find(prefix, from);
+  if (at == std::string::npos) return "";
+  return dom.substr(at, dom.find('>', at) + 1 - at);
+}
+
+Shown Read(const std::string& dom) {
+  Shown shown;
+  const std::string step = StartTag(dom, "<output id=\"step\"");
+  shown.frame = Attribute(step, "data-frame");
+  shown.phase = Attribute(step, "data-phase");
+  shown.step = Attribute(step, "data-step");
+  const size_t text = dom.find(step) + step.size();
+  shown.text = dom.substr(text, dom.find("</output>", text) - text);
+  shown.playing = Attribute(StartTag(dom, "<body"), "data-playing");
+  const size_t cells = dom.find("<g id=\"cells\">");
+  const size_t end = dom.find("</g>", cells);
+  for (size_t at = dom.find("<circle", cells); at < end;
+       at = dom.find("<circle", at + 1)) {
+    shown.cells.push_back(Attribute(StartTag(dom, "<circle", at), "class"));
+  }
+  return shown;
+}
+
+class BrowserTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::optional<std::string> chromium = FindChromium();
+    if (!chromium) {
+      GTEST_SKIP() << "Chromium is not installed (scripts/setup.sh installs "
+                      "it; ANIMAT_CHROMIUM names another binary)";
+    }
+    chromium_ = *chromium;
+    const ::testing::TestInfo* test =
+        ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::path(::testing::TempDir()) /
+           ("animat-browser-" + std::string(test->name()) + "-" +
+            std::to_string(getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+
+    // A short evaluation: 400 development, 40 equilibration and 200 motion
+    // steps, every 20th recorded.
+    const std::string config = (dir_ / "short.txtpb").string();
+    ASSERT_TRUE(WriteFile(config,
+                          "evaluation { equilibration_steps: 40 "
+                          "motion_steps: 200 }\n")
+                    .ok());
+    const std::string animat = std::string(ANIMAT_BIN_DIR) + "/animat";
+    const std::string trace = (dir_ / "trace.binpb").string();
+    page_ = (dir_ / "page.html").string();
+    const Outcome simulated =
+        Shell(animat + " simulate --genome " +
+              testing::TestData("genomes/seed-1198.json") + " --config " +
+              config + " --every 20 --trace " + trace + " 2>&1");
+    ASSERT_EQ(simulated.exit_code, 0) << simulated.output;
+    const Outcome rendered =
+        Shell(animat + " render --trace " + trace + " -o " + page_ + " 2>&1");
+    ASSERT_EQ(rendered.exit_code, 0) << rendered.output;
+    ASSERT_TRUE(ReadProtoFile(trace, &trace_).ok());
+    ASSERT_EQ(trace_.result().status(), v1::EvaluationResult::OK);
+    ASSERT_EQ(trace_.development_size(), 21);  // 0, 20, ..., 380, 399.
+    ASSERT_EQ(trace_.frames_size(), 3 + 11);   // By 20 to 40, then to 200.
+  }
+
+  void TearDown() override {
+    if (!dir_.empty()) fs::remove_all(dir_);
+  }
+
+  std::string Chromium(const std::string& action, const std::string& fragment,
+                       int budget_ms = 0) {
+    const std::string profile = (dir_ / "profile").string();
+    std::string command =
+        "timeout 120 " + chromium_ +
+        " --headless --no-sandbox --disable-gpu --disable-quic"
+        " --no-first-run --disable-background-networking"
+        " --disable-component-update --disable-sync --hide-scrollbars"
+        " --user-data-dir=" +
+        profile + " " + action;
+    if (budget_ms > 0) {
+      command += " --virtual-time-budget=" + std::to_string(budget_ms);
+    }
+    return command + " 'file://" + page_ + "#" + fragment + "' 2>/dev/null";
+  }
+
+  Shown Dump(const std::string& fragment, int budget_ms = 500) {
+    const Outcome run = Shell(Chromium("--dump-dom", fragment, budget_ms));
+    EXPECT_EQ(run.exit_code, 0);
+    EXPECT_NE(run.output.find("</html>"), std::string::npos) << run.output;
+    return Read(run.output);
+  }
+
+  std::string Screenshot(const std::string& fragment, const std::string& name) {
+    const std::string png = (dir_ / name).string();
+    const Outcome run =
+        Shell(Chromium("--window-size=1000,700 --screenshot=" + png, fragment));
+    EXPECT_EQ(run.exit_code, 0);
+    Result<std::string> bytes = ReadFile(png);
+    EXPECT_TRUE(bytes.ok()) << bytes.status().message();
+    return bytes.ok() ? *bytes : "";
+  }
+
+  int Frames() const {
+    return trace_.development_size() + trace_.frames_size();
+  }
+  // The phase and step of page frame k: development, then the rest.
+  std::pair<std::string, int> Expected(int k) const {
+    if (k < trace_.development_size()) {
+      return {"development", trace_.development(k).step()};
+    }
+    const v1::MotionFrame& f = trace_.frames(k - trace_.development_size());
+    return {f.phase() == v1::MotionFrame::EQUILIBRATION ? "equilibration"
+                                                        : "motion",
+            f.step()};
+  }
+  // The colour classes the trace gives the body's nodes at page frame k.
+  std::vector<std::string> ExpectedClasses(int k) const {
+    const int m = k - trace_.development_size();
+    const std::vector<viz::Actuation> actuation =
+        viz::ClassifyActuation(m > 0 ? &trace_.frames(m - 1) : nullptr,
+                               trace_.frames(m), viz::kDefaultNeutralRate);
+    std::vector<std::string> classes;
+    for (const viz::Actuation a : actuation) {
+      classes.push_back(a == viz::Actuation::kExpanding     ? "expanding"
+                        : a == viz::Actuation::kContracting ? "contracting"
+                                                            : "neutral");
+    }
+    return classes;
+  }
+
+  std::string chromium_;
+  fs::path dir_;
+  std::string page_;
+  v1::Trace trace_;
+};
+
+TEST_F(BrowserTest, EachFrameShowsTheTracesStepAndCells) {
+  const int development = trace_.development_size();
+  // The motion frame whose cells are the most varied, to check colours.
+  int varied = development + 3;
+  size_t kinds = 0;
+  for (int k = development + 3; k < Frames(); ++k) {
+    std::vector<std::string> classes = ExpectedClasses(k);
+    std::sort(classes.begin(), classes.end());
+    const size_t n =
+        std::unique(classes.begin(), classes.end()) - classes.begin();
+    if (n > kinds) varied = k, kinds = n;
+  }
+  ASSERT_GE(kinds, 2u) << "the test genome should expand and contract";
+
+  for (const int k : {5, development, varied, Frames() - 1}) {
+    SCOPED_TRACE("frame " + std::to_string(k));
+    const Shown shown = Dump("frame=" + std::to_string(k));
+    const auto [phase, step] = Expected(k);
+    EXPECT_EQ(shown.frame, std::to_string(k));
+    EXPECT_EQ(shown.phase, phase);
+    EXPECT_EQ(shown.step, std::to_string(step));
+    const std::string length = phase == "development" ? "399"
+                               : phase == "motion"    ? "200"
+                                                      : "40";
+    EXPECT_EQ(shown.text,
+              phase + " step " + std::to_string(step) + " / " + length);
+    EXPECT_EQ(shown.playing, "false");
+    if (phase == "development") {
+      EXPECT_EQ(shown.cells,
+                std::vector<std::string>(trace_.development(k).x_size(),
+                                         "development"));
+    } else {
+      EXPECT_EQ(shown.cells, ExpectedClasses(k));
+    }
+  }
+}
+
+TEST_F(BrowserTest, ThePictureChangesFromFrameToFrame) {
+  const int development = trace_.development_size();
+  const std::string early =
+      Screenshot("frame=" + std::to_string(development + 5), "early.png");
+  const std::string late =
+      Screenshot("frame=" + std::to_string(Frames() - 1), "late.png");
+  const std::string again =
+      Screenshot("frame=" + std::to_string(development + 5), "again.png");
+  ASSERT_GT(early.size(), 1000u);
+  EXPECT_EQ(early.substr(1, 3), "PNG");
+  // The same frame gives the same pixels, so different bytes mean a
+  // different picture.
+  EXPECT_EQ(early, again);
+  EXPECT_NE(early, late);
+}
+
+TEST_F(BrowserTest, PlayingAdvancesFramesAndTheCounterFollows) {
+  const Shown shown = Dump("frame=0&play&speed=0.5", 1000);
+  const int frame = std::atoi(shown.frame.c_str());
+  EXPECT_EQ(shown.playing, "true");
+  ASSERT_GT(frame, 0);
+  ASSERT_LT(frame, Frames());
+  const auto [phase, step] = Expected(frame);
+  EXPECT_EQ(shown.phase, phase);
+  EXPECT_EQ(shown.step, std::to_string(step));
+}
+
+}  // namespace
+}  // namespace animat
