@@ -1,15 +1,18 @@
 // animat-worker --connect ENDPOINT [--threads N] [--heartbeat-ms MS]
+//               [--curve-server MASTER.pub --curve-secret WORKER.key]
 //
 // Evaluates animats for a master until SIGTERM or SIGINT; then hands back
 // the work it has not started, finishes what it is evaluating, and exits 0.
 // Exits 3 when the master refuses it (another protocol version or build),
 // 2 on a usage error.
 #include <csignal>
+#include <iostream>
 #include <thread>
 
 #include <google/protobuf/stubs/logging.h>
 #include <CLI/CLI.hpp>
 
+#include "common/security/curve_keys.h"
 #include "worker/worker.h"
 
 namespace {
@@ -39,11 +42,37 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--null-evaluation", options.null_evaluation,
                "Evaluate nothing; answer at once (dispatch benchmarks)");
+  std::string server_key_file, secret_key_file;
+  auto* server =
+      app.add_option("--curve-server", server_key_file,
+                     "CurveZMQ: the master's public key file (animat keygen)");
+  auto* secret = app.add_option(
+      "--curve-secret", secret_key_file,
+      "CurveZMQ: this worker's key pair file; its public key must be on "
+      "the master's allow-list");
+  server->needs(secret);
+  secret->needs(server);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;
+  }
+
+  if (!server_key_file.empty()) {
+    animat::Result<std::string> server_key =
+        animat::security::ReadPublicKey(server_key_file);
+    animat::Result<animat::security::CurveKeyPair> pair =
+        animat::security::ReadKeyPair(secret_key_file);
+    for (const animat::Status& status : {server_key.status(), pair.status()}) {
+      if (!status.ok()) {
+        std::cerr << "animat-worker: " << status.message() << "\n";
+        return 2;
+      }
+    }
+    options.curve_server_key = *server_key;
+    options.curve_public_key = pair->public_key;
+    options.curve_secret_key = pair->secret_key;
   }
 
   // Malformed input is reported through our log; protobuf's own lines

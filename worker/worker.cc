@@ -57,6 +57,11 @@ Worker::SessionEnd Worker::RunSession(zmq::context_t& context) {
   zmq::socket_t socket(context, zmq::socket_type::dealer);
   socket.set(zmq::sockopt::linger, 0);
   socket.set(zmq::sockopt::maxmsgsize, protocol::kMaxMessageBytes);
+  if (!options_.curve_server_key.empty()) {
+    socket.set(zmq::sockopt::curve_serverkey, options_.curve_server_key);
+    socket.set(zmq::sockopt::curve_publickey, options_.curve_public_key);
+    socket.set(zmq::sockopt::curve_secretkey, options_.curve_secret_key);
+  }
   socket.connect(options_.endpoint);
 
   Clock::time_point last_heard = Clock::now();

@@ -38,6 +38,12 @@ struct WorkerOptions {
   // to max.
   int reconnect_min_ms = protocol::kReconnectMinMs;
   int reconnect_max_ms = protocol::kReconnectMaxMs;
+  // CurveZMQ (docs/security.md): the master's public key and this worker's
+  // key pair, Z85. All empty: a plain connection (loopback or --insecure
+  // masters only); all set: an encrypted one the master must allow.
+  std::string curve_server_key;
+  std::string curve_public_key;
+  std::string curve_secret_key;
   LogSink log = Prefixed("worker", StderrSink);
 };
 
