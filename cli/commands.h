@@ -18,6 +18,7 @@ Command AddSimulateCommand(CLI::App& app);
 Command AddSceneCommand(CLI::App& app);
 Command AddEvolveCommand(CLI::App& app);
 Command AddLineageCommand(CLI::App& app);
+Command AddKeygenCommand(CLI::App& app);
 Command AddRenderCommand(CLI::App& app);
 
 // Prints "animat: <message>" to stderr and returns 1.

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   commands["scene"] = animat::cli::AddSceneCommand(app);
   commands["evolve"] = animat::cli::AddEvolveCommand(app);
   commands["lineage"] = animat::cli::AddLineageCommand(app);
+  commands["keygen"] = animat::cli::AddKeygenCommand(app);
   commands["render"] = animat::cli::AddRenderCommand(app);
   try {
     app.parse(argc, argv);
