@@ -72,6 +72,7 @@ struct Options {
   int threads = 64;
   std::string db;  // Empty: a temporary file, removed afterwards.
   std::string endpoint = "tcp://127.0.0.1:*";
+  int heartbeat_ms = protocol::kHeartbeatMs;
   std::string worker = ANIMAT_WORKER_PATH;
   std::string worker_log = "/dev/null";
   bool verbose = false;
@@ -257,6 +258,7 @@ int Bench(const Options& options) {
   DispatcherOptions dispatcher_options;
   dispatcher_options.endpoint = options.endpoint;
   dispatcher_options.accept_null_workers = true;
+  dispatcher_options.heartbeat_ms = options.heartbeat_ms;
   dispatcher_options.log =
       options.verbose ? Prefixed("dispatcher", StderrSink) : quiet;
   Result<std::unique_ptr<Dispatcher>> dispatcher =
@@ -312,11 +314,14 @@ int Bench(const Options& options) {
   }
   const double rate = static_cast<double>(*count) / seconds;
   std::printf(
-      "  %lld individuals (%lld dispatches) in %.3f s; master CPU %.0f%%, "
-      "workers' CPU %.0f%%; store %.1f MB (%.0f bytes per individual)\n",
+      "  %lld individuals (%lld dispatches) in %.3f s; master CPU %.0f%% "
+      "(%.1f us per individual), workers' CPU %.0f%%; store %.1f MB (%.0f "
+      "bytes per individual)\n",
       static_cast<long long>(*count), static_cast<long long>(stats.dispatched),
-      seconds, 100 * master_cpu / seconds, 100 * workers_cpu / seconds,
-      1e-6 * bytes, static_cast<double>(bytes) / static_cast<double>(*count));
+      seconds, 100 * master_cpu / seconds,
+      1e6 * master_cpu / static_cast<double>(*count),
+      100 * workers_cpu / seconds, 1e-6 * bytes,
+      static_cast<double>(bytes) / static_cast<double>(*count));
   if (counts->made > counts->recorded) {
     std::printf(
         "  (%lld initial candidates not chosen were still on their way at the "
@@ -373,6 +378,10 @@ int main(int argc, char** argv) {
                  "temporary file in $TMPDIR or /tmp, removed afterwards");
   app.add_option("--endpoint", options.endpoint,
                  "Where the dispatcher binds (tcp://... or ipc://...)")
+      ->capture_default_str();
+  app.add_option("--heartbeat-ms", options.heartbeat_ms,
+                 "Heartbeat interval (longer under a profiler)")
+      ->check(CLI::Range(10, 600000))
       ->capture_default_str();
   app.add_option("--worker", options.worker, "The animat-worker binary")
       ->capture_default_str();

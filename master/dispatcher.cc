@@ -55,11 +55,15 @@ Dispatcher::~Dispatcher() = default;
 
 void Dispatcher::Submit(uint64_t individual, const v1::Genome& genome) {
   if (pending_.count(individual) != 0) return;
+  Submit(individual, protocol::SerializeGenome(genome));
+}
+
+void Dispatcher::Submit(uint64_t individual,
+                        const protocol::SerializedGenome& genome) {
+  if (pending_.count(individual) != 0) return;
   Individual& entry = pending_[individual];
-  entry.item.set_individual(individual);
-  *entry.item.mutable_genome() = genome;
-  entry.item.set_genome_hash(protocol::GenomeHash(genome));
-  entry.bytes = entry.item.ByteSizeLong();
+  entry.item = EncodeWorkItem(individual, genome);
+  entry.genome_hash = genome.hash;
   queue_.push_back(individual);
 }
 
@@ -241,7 +245,7 @@ void Dispatcher::Collect(const std::string& identity, WorkerState& worker,
       continue;
     }
     Individual& entry = it->second;
-    if (r.genome_hash() != entry.item.genome_hash()) {
+    if (r.genome_hash() != entry.genome_hash) {
       Ignore("a result for individual " + std::to_string(r.individual()) +
              " from " + worker.name + " for another genome");
       continue;
@@ -278,9 +282,10 @@ void Dispatcher::Collect(const std::string& identity, WorkerState& worker,
 
 void Dispatcher::Lease(const std::string& identity, WorkerState& worker,
                        uint64_t individual, Clock::time_point deadline,
-                       v1::Work* work) {
+                       WorkEncoder* work, std::vector<uint64_t>* items) {
   Individual& entry = pending_.at(individual);
-  *work->add_items() = entry.item;
+  work->Add(entry.item);
+  items->push_back(individual);
   entry.leased = true;
   entry.worker = identity;
   entry.deadline = deadline;
@@ -302,13 +307,13 @@ void Dispatcher::Dispatch() {
       // A suspect (its last worker died or its lease expired) goes alone to
       // a worker holding nothing else, so it cannot take others down.
       if (worker.leased.empty()) {
-        v1::Envelope envelope;
-        envelope.mutable_work()->set_config_hash(config_hash_);
+        WorkEncoder work(config_hash_);
+        std::vector<uint64_t> items;
         const uint64_t suspect = suspects_.begin()->second;
         suspects_.erase(suspects_.begin());
         worker.suspect = suspect;
-        Lease(identity, worker, suspect, deadline, envelope.mutable_work());
-        SendWork(identity, worker, std::move(envelope));
+        Lease(identity, worker, suspect, deadline, &work, &items);
+        SendWork(identity, worker, &work, items);
         if (drainer_ == identity) drainer_.clear();
         continue;
       }
@@ -319,36 +324,30 @@ void Dispatcher::Dispatch() {
       if (drainer_ == identity) continue;
     }
     while (worker.credit > 0 && !queue_.empty()) {
-      v1::Envelope envelope;
-      v1::Work* work = envelope.mutable_work();
-      work->set_config_hash(config_hash_);
-      size_t bytes = 0;
+      WorkEncoder work(config_hash_);
+      std::vector<uint64_t> items;
       while (worker.credit > 0 && !queue_.empty() &&
-             work->items_size() < protocol::kMaxBatch) {
+             work.items() < protocol::kMaxBatch) {
         const uint64_t individual = queue_.front();
-        const size_t item_bytes = pending_.at(individual).bytes;
+        const size_t item_bytes = pending_.at(individual).item.size();
         // Keep each message well inside the sockets' size limit.
-        if (work->items_size() > 0 &&
-            bytes + item_bytes > protocol::kMaxWorkBytes) {
+        if (work.items() > 0 &&
+            work.item_bytes() + item_bytes > protocol::kMaxWorkBytes) {
           break;
         }
-        bytes += item_bytes;
         queue_.pop_front();
-        Lease(identity, worker, individual, deadline, work);
+        Lease(identity, worker, individual, deadline, &work, &items);
       }
-      if (!SendWork(identity, worker, std::move(envelope))) break;
+      if (!SendWork(identity, worker, &work, items)) break;
     }
   }
   if (suspects_.empty()) drainer_.clear();
 }
 
 bool Dispatcher::SendWork(const std::string& identity, WorkerState& worker,
-                          v1::Envelope envelope) {
-  std::vector<uint64_t> items;
-  for (const v1::WorkItem& item : envelope.work().items()) {
-    items.push_back(item.individual());
-  }
-  if (Send(identity, std::move(envelope))) return true;
+                          WorkEncoder* work,
+                          const std::vector<uint64_t>& items) {
+  if (SendEncoded(identity, "work", work->Finish())) return true;
   // Not delivered (the worker's queue is full or it is gone): the items
   // go back at once, without counting an attempt.
   for (auto id = items.rbegin(); id != items.rend(); ++id) {
@@ -469,7 +468,11 @@ void Dispatcher::DropWorker(const std::string& identity, bool died,
 
 bool Dispatcher::Send(const std::string& identity, v1::Envelope envelope) {
   const char* what = protocol::BodyName(envelope);
-  const std::string bytes = protocol::Encode(std::move(envelope));
+  return SendEncoded(identity, what, protocol::Encode(std::move(envelope)));
+}
+
+bool Dispatcher::SendEncoded(const std::string& identity, const char* what,
+                             const std::string& bytes) {
   const auto it = workers_.find(identity);
   std::string problem;
   try {

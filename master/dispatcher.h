@@ -31,6 +31,7 @@
 #include "common/base/status.h"
 #include "common/evaluation/model_config.h"
 #include "common/protocol/protocol.h"
+#include "master/work_encoder.h"
 
 namespace zmq {
 class context_t;
@@ -81,6 +82,9 @@ class Dispatcher {
   // Queues an individual for evaluation; an individual already pending is
   // left as it is. The genome must be valid.
   void Submit(uint64_t individual, const v1::Genome& genome);
+  // The same with the genome serialised (protocol::SerializeGenome), as
+  // the caller may already have it.
+  void Submit(uint64_t individual, const protocol::SerializedGenome& genome);
 
   // Serves workers for up to `timeout_ms` and returns the completions that
   // came in, as soon as there are some.
@@ -110,8 +114,8 @@ class Dispatcher {
     std::optional<uint64_t> suspect;  // The suspect it holds alone.
   };
   struct Individual {
-    v1::WorkItem item;
-    size_t bytes = 0;    // Of the serialised item.
+    std::string item;  // The serialised WorkItem (work_encoder.h).
+    uint64_t genome_hash = 0;
     uint64_t lease = 0;  // Serial of its current lease.
     int attempts = 0;
     bool leased = false;
@@ -131,7 +135,8 @@ class Dispatcher {
                const v1::Results& results, std::vector<Completion>* done);
   void Dispatch();
   void Lease(const std::string& identity, WorkerState& worker,
-             uint64_t individual, Clock::time_point deadline, v1::Work* work);
+             uint64_t individual, Clock::time_point deadline, WorkEncoder* work,
+             std::vector<uint64_t>* items);
   // Ends an individual's lease (it stays pending).
   void Unlease(uint64_t individual);
   // Removes a queued individual from its queue.
@@ -144,10 +149,13 @@ class Dispatcher {
                   std::vector<Completion>* done);
   // True when the message was handed to the socket.
   bool Send(const std::string& identity, v1::Envelope envelope);
-  // Sends work; if it cannot be delivered, its items go back to the queue
-  // at once (no attempt counted) and false is returned.
+  // The same for an encoded envelope; `what` names its body for the log.
+  bool SendEncoded(const std::string& identity, const char* what,
+                   const std::string& bytes);
+  // Sends the work of `items`; if it cannot be delivered, they go back to
+  // the queue at once (no attempt counted) and false is returned.
   bool SendWork(const std::string& identity, WorkerState& worker,
-                v1::Envelope envelope);
+                WorkEncoder* work, const std::vector<uint64_t>& items);
   void Ignore(const std::string& what);
 
   DispatcherOptions options_;

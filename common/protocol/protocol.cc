@@ -91,6 +91,13 @@ uint64_t GenomeHash(const v1::Genome& genome) {
   return Fingerprint(Deterministic(genome));
 }
 
+SerializedGenome SerializeGenome(const v1::Genome& genome) {
+  SerializedGenome out;
+  out.bytes = Deterministic(genome);
+  out.hash = Fingerprint(out.bytes);
+  return out;
+}
+
 const char* BodyName(const v1::Envelope& envelope) {
   switch (envelope.body_case()) {
     case v1::Envelope::kHello:

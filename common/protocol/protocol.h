@@ -77,6 +77,14 @@ uint64_t GenomeHash(const v1::Genome& genome);
 // The same for any message.
 uint64_t MessageHash(const google::protobuf::MessageLite& message);
 
+// A genome's deterministic serialisation with its GenomeHash, made once
+// for whoever needs both (the lineage store, the dispatcher).
+struct SerializedGenome {
+  std::string bytes;
+  uint64_t hash = 0;
+};
+SerializedGenome SerializeGenome(const v1::Genome& genome);
+
 // "hello", "work", ... for log lines; "none" without a body.
 const char* BodyName(const v1::Envelope& envelope);
 

@@ -31,7 +31,10 @@ Result<std::unique_ptr<Database>> Database::Open(const std::string& path,
   return std::unique_ptr<Database>(new Database(db, name));
 }
 
-Database::~Database() { sqlite3_close(db_); }
+Database::~Database() {
+  for (auto& [sql, kept] : kept_) sqlite3_finalize(kept.statement);
+  sqlite3_close(db_);
+}
 
 Status Database::Execute(std::string_view sql) {
   char* message = nullptr;
@@ -58,26 +61,54 @@ Result<Statement> Database::Prepare(std::string_view sql) {
   return Statement(db_, statement);
 }
 
+Result<Statement> Database::Cached(std::string_view sql) {
+  auto it = kept_.find(sql);
+  if (it == kept_.end()) {
+    Result<Statement> prepared = Prepare(sql);
+    if (!prepared.ok()) return prepared.status();
+    it = kept_.emplace(std::string(sql), Kept{prepared->statement_, false})
+             .first;
+    prepared->statement_ = nullptr;  // Now the Database's.
+  }
+  if (it->second.borrowed) return Prepare(sql);
+  it->second.borrowed = true;
+  return Statement(db_, it->second.statement, &it->second.borrowed);
+}
+
 int64_t Database::last_insert_rowid() const {
   return sqlite3_last_insert_rowid(db_);
 }
 
 Statement::Statement(Statement&& other) noexcept
-    : db_(other.db_), statement_(other.statement_) {
+    : db_(other.db_), statement_(other.statement_), borrowed_(other.borrowed_) {
   other.statement_ = nullptr;
+  other.borrowed_ = nullptr;
 }
 
 Statement& Statement::operator=(Statement&& other) noexcept {
   if (this != &other) {
-    sqlite3_finalize(statement_);
+    Release();
     db_ = other.db_;
     statement_ = other.statement_;
+    borrowed_ = other.borrowed_;
     other.statement_ = nullptr;
+    other.borrowed_ = nullptr;
   }
   return *this;
 }
 
-Statement::~Statement() { sqlite3_finalize(statement_); }
+Statement::~Statement() { Release(); }
+
+void Statement::Release() {
+  if (borrowed_ != nullptr) {
+    Reset();
+    *borrowed_ = false;
+    borrowed_ = nullptr;
+  } else {
+    sqlite3_finalize(statement_);
+  }
+  statement_ = nullptr;
+}
 
 Statement& Statement::Bind(int index, int64_t value) {
   sqlite3_bind_int64(statement_, index, value);

@@ -6,6 +6,8 @@
 #define ANIMAT_MASTER_LINEAGE_SQLITE_H_
 
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -34,15 +36,27 @@ class Database {
   Status Execute(std::string_view sql);
   // Prepares one statement; the Database must outlive it.
   Result<Statement> Prepare(std::string_view sql);
+  // Like Prepare, but the statement is prepared once and kept by the
+  // Database for later calls with the same text: the Statement returned
+  // borrows it, and resets it (bindings cleared) when destroyed. While a
+  // text's statement is borrowed, another call with that text prepares a
+  // statement of its own.
+  Result<Statement> Cached(std::string_view sql);
 
   int64_t last_insert_rowid() const;
   const std::string& path() const { return path_; }
   sqlite3* handle() { return db_; }
 
  private:
+  struct Kept {
+    sqlite3_stmt* statement = nullptr;
+    bool borrowed = false;
+  };
+
   Database(sqlite3* db, std::string path) : db_(db), path_(std::move(path)) {}
   sqlite3* db_;
   std::string path_;
+  std::map<std::string, Kept, std::less<>> kept_;  // By SQL text.
 };
 
 // A prepared statement: bind (1-based), step, read columns (0-based).
@@ -75,10 +89,13 @@ class Statement {
 
  private:
   friend class Database;
-  Statement(sqlite3* db, sqlite3_stmt* statement)
-      : db_(db), statement_(statement) {}
+  Statement(sqlite3* db, sqlite3_stmt* statement, bool* borrowed = nullptr)
+      : db_(db), statement_(statement), borrowed_(borrowed) {}
+  // Finalizes an owned statement, resets and returns a borrowed one.
+  void Release();
   sqlite3* db_;
   sqlite3_stmt* statement_;
+  bool* borrowed_;  // The Database's flag, for a borrowed statement.
 };
 
 }  // namespace animat::sql

@@ -128,7 +128,7 @@ Result<int64_t> Store::CreateRun(uint64_t seed, const v1::RunConfig& config,
                                  const std::string& build_id) {
   std::string text;
   google::protobuf::TextFormat::PrintToString(config, &text);
-  Result<sql::Statement> insert = db_->Prepare(
+  Result<sql::Statement> insert = db_->Cached(
       "INSERT INTO runs (seed, config, config_text, config_hash, build_id,"
       " started_at, state) VALUES (?, ?, ?, ?, ?, ?, 'running')");
   if (!insert.ok()) return insert.status();
@@ -144,7 +144,7 @@ Result<int64_t> Store::CreateRun(uint64_t seed, const v1::RunConfig& config,
 }
 
 Result<std::vector<RunRow>> Store::Runs() {
-  Result<sql::Statement> select = db_->Prepare(
+  Result<sql::Statement> select = db_->Cached(
       "SELECT run_id, seed, config, config_hash, build_id, started_at,"
       " ended_at, state FROM runs ORDER BY run_id");
   if (!select.ok()) return select.status();
@@ -172,7 +172,7 @@ Result<std::vector<RunRow>> Store::Runs() {
 }
 
 Status Store::FinishRun(int64_t run) {
-  Result<sql::Statement> update = db_->Prepare(
+  Result<sql::Statement> update = db_->Cached(
       "UPDATE runs SET state = 'finished', ended_at = ? WHERE run_id = ?");
   if (!update.ok()) return update.status();
   update->Bind(1, UtcNow()).Bind(2, run);
@@ -182,7 +182,7 @@ Status Store::FinishRun(int64_t run) {
 Status Store::UpdateRunConfig(int64_t run, const v1::RunConfig& config) {
   std::string text;
   google::protobuf::TextFormat::PrintToString(config, &text);
-  Result<sql::Statement> update = db_->Prepare(
+  Result<sql::Statement> update = db_->Cached(
       "UPDATE runs SET seed = ?, config = ?, config_text = ?,"
       " config_hash = ?, state = 'running', ended_at = NULL WHERE run_id = ?");
   if (!update.ok()) return update.status();
@@ -196,22 +196,27 @@ Status Store::UpdateRunConfig(int64_t run, const v1::RunConfig& config) {
 
 Status Store::InsertIndividuals(int64_t run,
                                 const std::vector<NewIndividual>& batch) {
-  Result<sql::Statement> individual = db_->Prepare(
+  Result<sql::Statement> individual = db_->Cached(
       "INSERT INTO individuals (run_id, id, generation, operators, genome,"
       " genome_hash, elements, created_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
   if (!individual.ok()) return individual.status();
-  Result<sql::Statement> parent = db_->Prepare(
+  Result<sql::Statement> parent = db_->Cached(
       "INSERT INTO parents (run_id, child, position, parent)"
       " VALUES (?, ?, ?, ?)");
   if (!parent.ok()) return parent.status();
   const std::string now = UtcNow();
   for (const NewIndividual& n : batch) {
+    const protocol::SerializedGenome serialized =
+        n.serialized ? protocol::SerializedGenome()
+                     : protocol::SerializeGenome(n.genome);
+    const protocol::SerializedGenome& genome =
+        n.serialized ? *n.serialized : serialized;
     individual->Bind(1, run)
         .Bind(2, static_cast<int64_t>(n.id))
         .Bind(3, static_cast<int64_t>(n.generation))
         .Bind(4, Join(n.operators))
-        .BindBlob(5, n.genome.SerializeAsString())
-        .Bind(6, Hex64(protocol::GenomeHash(n.genome)))
+        .BindBlob(5, genome.bytes)
+        .Bind(6, Hex64(genome.hash))
         .Bind(7, static_cast<int64_t>(n.genome.elements_size()))
         .Bind(8, now);
     Status status = individual->Run();
@@ -236,7 +241,7 @@ Status Store::AddIndividuals(int64_t run,
 Status Store::RecordEvaluations(int64_t run,
                                 const std::vector<Evaluation>& batch) {
   return InTransaction(*db_, [&]() -> Status {
-    Result<sql::Statement> update = db_->Prepare(
+    Result<sql::Statement> update = db_->Cached(
         "UPDATE individuals SET status = ?, reason = ?, fitness = ?,"
         " cells = ?, steps = ?, wall_seconds = ?, worker = ?,"
         " state_hash = ?, evaluated_at = ?"
@@ -270,7 +275,7 @@ namespace {
 
 Result<std::vector<uint64_t>> ParentsOf(sql::Database& db, int64_t run,
                                         uint64_t id) {
-  Result<sql::Statement> select = db.Prepare(
+  Result<sql::Statement> select = db.Cached(
       "SELECT parent FROM parents WHERE run_id = ? AND child = ?"
       " ORDER BY position");
   if (!select.ok()) return select.status();
@@ -312,8 +317,8 @@ Status ReadIndividual(sql::Database& db, const sql::Statement& row, int64_t run,
 }  // namespace
 
 Result<IndividualRow> Store::Individual(int64_t run, uint64_t id) {
-  Result<sql::Statement> select = db_->Prepare(std::string(kIndividualColumns) +
-                                               " WHERE run_id = ? AND id = ?");
+  Result<sql::Statement> select = db_->Cached(std::string(kIndividualColumns) +
+                                              " WHERE run_id = ? AND id = ?");
   if (!select.ok()) return select.status();
   select->Bind(1, run).Bind(2, static_cast<int64_t>(id));
   Result<bool> row = select->Step();
@@ -331,8 +336,8 @@ Result<IndividualRow> Store::Individual(int64_t run, uint64_t id) {
 Result<std::vector<IndividualRow>> Store::IndividualsOf(int64_t run,
                                                         int generation) {
   Result<sql::Statement> select =
-      db_->Prepare(std::string(kIndividualColumns) +
-                   " WHERE run_id = ? AND generation = ? ORDER BY id");
+      db_->Cached(std::string(kIndividualColumns) +
+                  " WHERE run_id = ? AND generation = ? ORDER BY id");
   if (!select.ok()) return select.status();
   select->Bind(1, run).Bind(2, static_cast<int64_t>(generation));
   std::vector<IndividualRow> out;
@@ -368,7 +373,7 @@ Result<std::vector<Score>> ReadScores(sql::Statement& select) {
 }  // namespace
 
 Result<std::vector<Score>> Store::ScoresOf(int64_t run, int generation) {
-  Result<sql::Statement> select = db_->Prepare(
+  Result<sql::Statement> select = db_->Cached(
       "SELECT id, status, fitness FROM individuals"
       " WHERE run_id = ? AND generation = ? ORDER BY id");
   if (!select.ok()) return select.status();
@@ -379,7 +384,7 @@ Result<std::vector<Score>> Store::ScoresOf(int64_t run, int generation) {
 Result<std::vector<Score>> Store::MemberScores(int64_t run, int generation) {
   // Ordered by m.id, not i.id: the latter leads SQLite to walk every
   // individual of the run in key order instead of the generation's members.
-  Result<sql::Statement> select = db_->Prepare(
+  Result<sql::Statement> select = db_->Cached(
       "SELECT i.id, i.status, i.fitness FROM members m JOIN individuals i"
       " ON i.run_id = m.run_id AND i.id = m.id"
       " WHERE m.run_id = ? AND m.generation = ? ORDER BY m.id");
@@ -388,8 +393,34 @@ Result<std::vector<Score>> Store::MemberScores(int64_t run, int generation) {
   return ReadScores(*select);
 }
 
+Result<std::vector<MemberGenome>> Store::MemberGenomes(int64_t run,
+                                                       int generation) {
+  Result<sql::Statement> select = db_->Cached(
+      "SELECT i.id, i.fitness, i.genome FROM members m JOIN individuals i"
+      " ON i.run_id = m.run_id AND i.id = m.id"
+      " WHERE m.run_id = ? AND m.generation = ? ORDER BY i.id");
+  if (!select.ok()) return select.status();
+  select->Bind(1, run).Bind(2, static_cast<int64_t>(generation));
+  std::vector<MemberGenome> members;
+  for (;;) {
+    Result<bool> row = select->Step();
+    if (!row.ok()) return row.status();
+    if (!*row) break;
+    MemberGenome member;
+    member.id = static_cast<uint64_t>(select->Int(0));
+    if (!select->IsNull(1)) member.fitness = select->Double(1);
+    if (!member.genome.ParseFromString(select->Blob(2))) {
+      return Status::InvalidArgument(db_->path() + ": individual " +
+                                     std::to_string(member.id) +
+                                     " has an unreadable genome");
+    }
+    members.push_back(std::move(member));
+  }
+  return members;
+}
+
 Result<std::vector<uint64_t>> Store::Unevaluated(int64_t run) {
-  Result<sql::Statement> select = db_->Prepare(
+  Result<sql::Statement> select = db_->Cached(
       "SELECT id FROM individuals WHERE run_id = ? AND status IS NULL"
       " ORDER BY id");
   if (!select.ok()) return select.status();
@@ -406,7 +437,7 @@ Result<std::vector<uint64_t>> Store::Unevaluated(int64_t run) {
 
 Result<uint64_t> Store::NextId(int64_t run) {
   Result<sql::Statement> select =
-      db_->Prepare("SELECT MAX(id) FROM individuals WHERE run_id = ?");
+      db_->Cached("SELECT MAX(id) FROM individuals WHERE run_id = ?");
   if (!select.ok()) return select.status();
   select->Bind(1, run);
   Result<bool> row = select->Step();
@@ -421,7 +452,7 @@ Status Store::AddGeneration(int64_t run, int generation,
   return InTransaction(*db_, [&]() -> Status {
     Status status = InsertIndividuals(run, individuals);
     if (!status.ok()) return status;
-    Result<sql::Statement> insert = db_->Prepare(
+    Result<sql::Statement> insert = db_->Cached(
         "INSERT INTO generations (run_id, generation, size, created_at)"
         " VALUES (?, ?, ?, ?)");
     if (!insert.ok()) return insert.status();
@@ -431,7 +462,7 @@ Status Store::AddGeneration(int64_t run, int generation,
         .Bind(4, UtcNow());
     status = insert->Run();
     if (!status.ok()) return status;
-    Result<sql::Statement> member = db_->Prepare(
+    Result<sql::Statement> member = db_->Cached(
         "INSERT INTO members (run_id, generation, id) VALUES (?, ?, ?)");
     if (!member.ok()) return member.status();
     for (uint64_t id : members) {
@@ -449,7 +480,7 @@ Status Store::CompleteGeneration(int64_t run, int generation,
                                  const std::vector<uint64_t>& ranked,
                                  const GenerationStats& stats) {
   return InTransaction(*db_, [&]() -> Status {
-    Result<sql::Statement> rank = db_->Prepare(
+    Result<sql::Statement> rank = db_->Cached(
         "UPDATE members SET rank = ? WHERE run_id = ? AND generation = ?"
         " AND id = ?");
     if (!rank.ok()) return rank.status();
@@ -461,7 +492,7 @@ Status Store::CompleteGeneration(int64_t run, int generation,
       Status status = rank->Run();
       if (!status.ok()) return status;
     }
-    Result<sql::Statement> update = db_->Prepare(
+    Result<sql::Statement> update = db_->Cached(
         "UPDATE generations SET completed_at = ?, evaluated = ?, failed = ?,"
         " best_id = ?, best_fitness = ?, mean_fitness = ?,"
         " median_fitness = ? WHERE run_id = ? AND generation = ?");
@@ -484,7 +515,7 @@ Status Store::CompleteGeneration(int64_t run, int generation,
 }
 
 Result<GenerationRow> Store::Generation(int64_t run, int generation) {
-  Result<sql::Statement> select = db_->Prepare(
+  Result<sql::Statement> select = db_->Cached(
       "SELECT size, completed_at IS NOT NULL FROM generations"
       " WHERE run_id = ? AND generation = ?");
   if (!select.ok()) return select.status();
@@ -499,7 +530,7 @@ Result<GenerationRow> Store::Generation(int64_t run, int generation) {
   out.generation = generation;
   out.size = static_cast<int>(select->Int(0));
   out.complete = select->Int(1) != 0;
-  Result<sql::Statement> members = db_->Prepare(
+  Result<sql::Statement> members = db_->Cached(
       "SELECT id FROM members WHERE run_id = ? AND generation = ?"
       " ORDER BY rank, id");
   if (!members.ok()) return members.status();
@@ -513,9 +544,25 @@ Result<GenerationRow> Store::Generation(int64_t run, int generation) {
   return out;
 }
 
+Result<std::optional<GenerationRow>> Store::LatestGenerationHead(int64_t run) {
+  Result<sql::Statement> select = db_->Cached(
+      "SELECT generation, size, completed_at IS NOT NULL FROM generations"
+      " WHERE run_id = ? ORDER BY generation DESC LIMIT 1");
+  if (!select.ok()) return select.status();
+  select->Bind(1, run);
+  Result<bool> row = select->Step();
+  if (!row.ok()) return row.status();
+  if (!*row) return std::optional<GenerationRow>();
+  GenerationRow out;
+  out.generation = static_cast<int>(select->Int(0));
+  out.size = static_cast<int>(select->Int(1));
+  out.complete = select->Int(2) != 0;
+  return std::optional<GenerationRow>(std::move(out));
+}
+
 Result<std::optional<GenerationRow>> Store::LatestGeneration(int64_t run) {
   Result<sql::Statement> select =
-      db_->Prepare("SELECT MAX(generation) FROM generations WHERE run_id = ?");
+      db_->Cached("SELECT MAX(generation) FROM generations WHERE run_id = ?");
   if (!select.ok()) return select.status();
   select->Bind(1, run);
   Result<bool> row = select->Step();

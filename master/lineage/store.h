@@ -22,6 +22,7 @@
 #include "animat/v1/genome.pb.h"
 #include "animat/v1/trace.pb.h"
 #include "common/base/status.h"
+#include "common/protocol/protocol.h"
 #include "master/lineage/sqlite.h"
 
 namespace animat::lineage {
@@ -44,6 +45,10 @@ struct NewIndividual {
   std::vector<uint64_t> parents;       // In order; none for random ones.
   std::vector<std::string> operators;  // E.g. {"crossover", "sign"}.
   v1::Genome genome;
+  // protocol::SerializeGenome(genome), when the caller has it already: the
+  // store then writes these bytes and hash instead of serialising the
+  // genome again (they must be the genome's).
+  std::optional<protocol::SerializedGenome> serialized;
 };
 
 struct Evaluation {
@@ -70,6 +75,13 @@ struct Score {
   uint64_t id = 0;
   bool evaluated = false;
   std::optional<double> fitness;  // Only for status "ok".
+};
+
+// A member of a generation with what making the next one needs.
+struct MemberGenome {
+  uint64_t id = 0;
+  std::optional<double> fitness;  // Only for status "ok".
+  v1::Genome genome;
 };
 
 struct GenerationRow {
@@ -120,6 +132,10 @@ class Store {
   Result<std::vector<Score>> ScoresOf(int64_t run, int generation);
   // The scores of the members of `generation`, in increasing id.
   Result<std::vector<Score>> MemberScores(int64_t run, int generation);
+  // The members of `generation` with their fitness and genomes, in
+  // increasing id, in one query. Fails, naming the individual, on a genome
+  // that does not parse.
+  Result<std::vector<MemberGenome>> MemberGenomes(int64_t run, int generation);
   // Every individual of the run not yet evaluated, in increasing id.
   Result<std::vector<uint64_t>> Unevaluated(int64_t run);
   // One more than the highest id of the run (0 for none).
@@ -136,6 +152,8 @@ class Store {
                             const GenerationStats& stats);
   // The generation with the highest number, if any.
   Result<std::optional<GenerationRow>> LatestGeneration(int64_t run);
+  // The same without its members (left empty), in one row read.
+  Result<std::optional<GenerationRow>> LatestGenerationHead(int64_t run);
   Result<GenerationRow> Generation(int64_t run, int generation);
 
   sql::Database& database() { return *db_; }

@@ -106,7 +106,11 @@ Result<std::unique_ptr<EvolutionRun>> EvolutionRun::Resume(
 Status EvolutionRun::Submit(const std::vector<lineage::NewIndividual>& made,
                             Dispatcher* dispatcher) {
   for (const lineage::NewIndividual& n : made) {
-    dispatcher->Submit(n.id, n.genome);
+    if (n.serialized) {
+      dispatcher->Submit(n.id, *n.serialized);
+    } else {
+      dispatcher->Submit(n.id, n.genome);
+    }
   }
   return Status::Ok();
 }
@@ -114,7 +118,9 @@ Status EvolutionRun::Submit(const std::vector<lineage::NewIndividual>& made,
 Status EvolutionRun::Flush() {
   if (unsaved_.empty()) return Status::Ok();
   Status status = store_->RecordEvaluations(run_id_, unsaved_);
-  if (status.ok()) unsaved_.clear();
+  if (!status.ok()) return status;
+  for (const lineage::Evaluation& e : unsaved_) awaited_.erase(e.id);
+  unsaved_.clear();
   return status;
 }
 
@@ -166,7 +172,11 @@ Status EvolutionRun::Run(
          dispatcher->pending() == 0)) {
       status = Flush();
       last_flush = now;
-      if (status.ok()) status = Advance(dispatcher, progress);
+      // Nothing can advance while the latest generation awaits results;
+      // with nothing pending at all, the store is asked in any case.
+      if (status.ok() && (awaited_.empty() || dispatcher->pending() == 0)) {
+        status = Advance(dispatcher, progress);
+      }
     }
   }
   Status flushed = Flush();
@@ -178,7 +188,7 @@ Status EvolutionRun::Advance(
     const std::function<void(const GenerationReport&)>& progress) {
   for (;;) {
     Result<std::optional<lineage::GenerationRow>> latest =
-        store_->LatestGeneration(run_id_);
+        store_->LatestGenerationHead(run_id_);
     if (!latest.ok()) return latest.status();
     if (!latest->has_value()) {
       bool changed = false;
@@ -194,8 +204,8 @@ Status EvolutionRun::Advance(
       for (const lineage::Score& s : *scores) {
         if (!s.evaluated) return Status::Ok();  // Waiting for results.
       }
-      Status status = CompleteGeneration(generation.generation,
-                                         generation.members, progress);
+      Status status =
+          CompleteGeneration(generation.generation, *scores, progress);
       if (!status.ok()) return status;
       continue;
     }
@@ -254,6 +264,7 @@ Status EvolutionRun::AdvanceInitial(Dispatcher* dispatcher, bool* changed) {
       n.generation = 0;
       n.operators = {"random"};
       n.genome = GenomeToProto(InitialCandidate(id, p));
+      n.serialized = protocol::SerializeGenome(n.genome);
       batch.push_back(std::move(n));
     }
     Status status = store_->AddIndividuals(run_id_, batch);
@@ -275,13 +286,9 @@ Status EvolutionRun::AdvanceInitial(Dispatcher* dispatcher, bool* changed) {
 }
 
 Status EvolutionRun::CompleteGeneration(
-    int generation, const std::vector<uint64_t>& members,
+    int generation, const std::vector<lineage::Score>& scores,
     const std::function<void(const GenerationReport&)>& progress) {
-  (void)members;
-  Result<std::vector<lineage::Score>> scores =
-      store_->MemberScores(run_id_, generation);
-  if (!scores.ok()) return scores.status();
-  const std::vector<Scored> ranked = Rank(ToScored(*scores));
+  const std::vector<Scored> ranked = Rank(ToScored(scores));
   lineage::GenerationStats stats;
   std::vector<uint64_t> order;
   std::vector<double> fitness;  // Best first.
@@ -329,31 +336,48 @@ Status EvolutionRun::CompleteGeneration(
 
 Status EvolutionRun::MakeGeneration(int generation, Dispatcher* dispatcher) {
   const EvolutionParams& p = params();
-  Result<lineage::GenerationRow> previous =
-      store_->Generation(run_id_, generation - 1);
-  if (!previous.ok()) return previous.status();
-  std::map<uint64_t, Genome> genomes;
+  // The previous generation's genomes: those this process made (the store
+  // holds the same), or else the store's.
   std::vector<Scored> scored;
-  for (uint64_t id : previous->members) {
-    Result<lineage::IndividualRow> row = store_->Individual(run_id_, id);
-    if (!row.ok()) return row.status();
-    Result<Genome> genome = GenomeFromProto(row->genome);
-    if (!genome.ok()) {
-      return genome.status().WithPrefix("stored genome of individual " +
-                                        std::to_string(id));
+  if (genomes_generation_ == generation - 1) {
+    Result<std::vector<lineage::Score>> scores =
+        store_->MemberScores(run_id_, generation - 1);
+    if (!scores.ok()) return scores.status();
+    scored = ToScored(*scores);
+  } else {
+    Result<std::vector<lineage::MemberGenome>> previous =
+        store_->MemberGenomes(run_id_, generation - 1);
+    if (!previous.ok()) return previous.status();
+    genomes_.clear();
+    for (const lineage::MemberGenome& member : *previous) {
+      Result<Genome> genome = GenomeFromProto(member.genome);
+      if (!genome.ok()) {
+        return genome.status().WithPrefix("stored genome of individual " +
+                                          std::to_string(member.id));
+      }
+      genomes_.emplace(member.id, std::move(genome).value());
+      scored.push_back({member.id, member.fitness});
     }
-    genomes.emplace(id, std::move(genome).value());
-    scored.push_back({id, row->fitness});
+    genomes_generation_ = generation - 1;
+  }
+  for (const Scored& s : scored) {
+    if (genomes_.count(s.id) == 0) {
+      return Status::Internal("no genome of member " + std::to_string(s.id) +
+                              " of generation " +
+                              std::to_string(generation - 1));
+    }
   }
   const std::vector<Scored> ranked = Rank(std::move(scored));
   std::vector<uint64_t> members;
+  std::map<uint64_t, Genome> next_genomes;
   for (int e = 0; e < p.elite && e < static_cast<int>(ranked.size()); ++e) {
     members.push_back(ranked[e].id);
+    next_genomes.emplace(ranked[e].id, genomes_.at(ranked[e].id));
   }
   Result<uint64_t> next = store_->NextId(run_id_);
   if (!next.ok()) return next.status();
   const auto genome_of = [&](uint64_t id) -> const Genome& {
-    return genomes.at(id);
+    return genomes_.at(id);
   };
   std::vector<lineage::NewIndividual> children;
   for (uint64_t id = *next; members.size() < static_cast<size_t>(p.population);
@@ -365,11 +389,16 @@ Status EvolutionRun::MakeGeneration(int generation, Dispatcher* dispatcher) {
     n.parents = std::move(offspring.parents);
     n.operators = std::move(offspring.operators);
     n.genome = GenomeToProto(offspring.genome);
+    n.serialized = protocol::SerializeGenome(n.genome);
     members.push_back(id);
     children.push_back(std::move(n));
+    next_genomes.emplace(id, std::move(offspring.genome));
   }
   Status status = store_->AddGeneration(run_id_, generation, members, children);
   if (!status.ok()) return status;
+  genomes_ = std::move(next_genomes);
+  genomes_generation_ = generation;
+  for (const lineage::NewIndividual& n : children) awaited_.insert(n.id);
   return Submit(children, dispatcher);
 }
 

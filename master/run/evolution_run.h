@@ -20,11 +20,13 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "common/base/log.h"
 #include "common/base/status.h"
+#include "common/genome/genome.h"
 #include "master/dispatcher.h"
 #include "master/evolution/evolution_params.h"
 #include "master/evolution/operators.h"
@@ -104,8 +106,9 @@ class EvolutionRun {
   Status Advance(Dispatcher* dispatcher,
                  const std::function<void(const GenerationReport&)>& progress);
   Status AdvanceInitial(Dispatcher* dispatcher, bool* changed);
+  // `scores`: of every member, all evaluated.
   Status CompleteGeneration(
-      int generation, const std::vector<uint64_t>& members,
+      int generation, const std::vector<lineage::Score>& scores,
       const std::function<void(const GenerationReport&)>& progress);
   Status MakeGeneration(int generation, Dispatcher* dispatcher);
   Status Submit(const std::vector<lineage::NewIndividual>& made,
@@ -119,6 +122,16 @@ class EvolutionRun {
   bool finished_ = false;
   bool score_null_evaluations_ = false;
   std::vector<lineage::Evaluation> unsaved_;  // Results not yet committed.
+  // Offspring of the latest generation whose results are not committed:
+  // until none is left, Run does not ask the store whether the generation
+  // is complete (unless nothing at all is pending). A hint only; the
+  // store decides.
+  std::set<uint64_t> awaited_;
+  // The genomes of generation genomes_generation_'s members as this process
+  // made them (the store holds the same), so the next generation is made
+  // without reading them back; -1 when there are none.
+  std::map<uint64_t, Genome> genomes_;
+  int genomes_generation_ = -1;
   int64_t evaluations_ = 0;
   double started_ = 0;      // Seconds, steady clock.
   double last_report_ = 0;  // When the last generation completed.

@@ -1,0 +1,102 @@
+#include "master/work_encoder.h"
+
+#include <algorithm>
+
+namespace animat {
+namespace {
+
+// Wire types and field numbers of animat/v1/protocol.proto.
+constexpr uint32_t kVarint = 0;
+constexpr uint32_t kFixed64 = 1;
+constexpr uint32_t kLengthDelimited = 2;
+constexpr uint32_t kEnvelopeProtocolVersion = 1;
+constexpr uint32_t kEnvelopeWork = 14;
+constexpr uint32_t kWorkConfigHash = 1;
+constexpr uint32_t kWorkItems = 2;
+constexpr uint32_t kItemIndividual = 1;
+constexpr uint32_t kItemGenome = 2;
+constexpr uint32_t kItemGenomeHash = 3;
+
+void AppendVarint(uint64_t value, std::string* out) {
+  while (value >= 0x80) {
+    out->push_back(static_cast<char>((value & 0x7F) | 0x80));
+    value >>= 7;
+  }
+  out->push_back(static_cast<char>(value));
+}
+
+void AppendTag(uint32_t field, uint32_t wire_type, std::string* out) {
+  AppendVarint((field << 3) | wire_type, out);
+}
+
+void AppendFixed64(uint32_t field, uint64_t value, std::string* out) {
+  AppendTag(field, kFixed64, out);
+  for (int i = 0; i < 8; ++i) {
+    out->push_back(static_cast<char>((value >> (8 * i)) & 0xFF));
+  }
+}
+
+void AppendBytes(uint32_t field, std::string_view bytes, std::string* out) {
+  AppendTag(field, kLengthDelimited, out);
+  AppendVarint(bytes.size(), out);
+  out->append(bytes);
+}
+
+}  // namespace
+
+// Proto3 leaves scalar fields at their default value out; so do these.
+
+std::string EncodeWorkItem(uint64_t individual,
+                           const protocol::SerializedGenome& genome) {
+  std::string out;
+  out.reserve(genome.bytes.size() + 24);
+  if (individual != 0) {
+    AppendTag(kItemIndividual, kVarint, &out);
+    AppendVarint(individual, &out);
+  }
+  AppendBytes(kItemGenome, genome.bytes, &out);  // A message: always.
+  if (genome.hash != 0) AppendFixed64(kItemGenomeHash, genome.hash, &out);
+  return out;
+}
+
+// Room for the heads: the version field (2 bytes), the work tag (1) and
+// length (at most 10), the config hash field (9).
+constexpr size_t kHeadRoom = 32;
+
+WorkEncoder::WorkEncoder(uint64_t config_hash)
+    : config_hash_(config_hash), out_(kHeadRoom, '\0') {}
+
+void WorkEncoder::Add(std::string_view item) {
+  if (out_.capacity() < out_.size() + item.size() + 16) {
+    // Whole batches are the rule: grow in large steps.
+    out_.reserve(
+        std::max(2 * out_.capacity(), out_.size() + 64 * (item.size() + 16)));
+  }
+  AppendBytes(kWorkItems, item, &out_);
+  ++items_;
+  items_bytes_ += item.size();
+}
+
+std::string WorkEncoder::Finish() {
+  std::string config;
+  if (config_hash_ != 0) AppendFixed64(kWorkConfigHash, config_hash_, &config);
+  const size_t items = out_.size() - kHeadRoom;
+  std::string head;
+  AppendTag(kEnvelopeProtocolVersion, kVarint, &head);
+  AppendVarint(protocol::kVersion, &head);
+  AppendTag(kEnvelopeWork, kLengthDelimited, &head);
+  AppendVarint(config.size() + items, &head);
+  head += config;
+  // The heads go just before the items; the room left over is dropped.
+  const size_t start = kHeadRoom - head.size();
+  out_.replace(start, head.size(), head);
+  out_.erase(0, start);
+  std::string out;
+  out.swap(out_);
+  out_.assign(kHeadRoom, '\0');
+  items_ = 0;
+  items_bytes_ = 0;
+  return out;
+}
+
+}  // namespace animat

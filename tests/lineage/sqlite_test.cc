@@ -1,0 +1,147 @@
+// The SQLite layer's kept statements (sql::Database::Cached): prepared
+// once, lent out, and returned reset, with no read left open.
+#include "master/lineage/sqlite.h"
+
+#include <gtest/gtest.h>
+#include <sqlite3.h>
+
+#include <memory>
+#include <string>
+
+namespace animat::sql {
+namespace {
+
+class CachedStatementTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    Result<std::unique_ptr<Database>> db = Database::Open("");
+    ASSERT_TRUE(db.ok()) << db.status().ToString();
+    db_ = std::move(db).value();
+    ASSERT_TRUE(db_->Execute("CREATE TABLE t (k INTEGER PRIMARY KEY, v TEXT);"
+                             "INSERT INTO t VALUES (1, 'a'), (2, 'b'), "
+                             "(3, 'c');")
+                    .ok());
+  }
+
+  // Statements of the connection that are part-way through a step.
+  int Busy() {
+    int busy = 0;
+    for (sqlite3_stmt* s = sqlite3_next_stmt(db_->handle(), nullptr);
+         s != nullptr; s = sqlite3_next_stmt(db_->handle(), s)) {
+      busy += sqlite3_stmt_busy(s) != 0;
+    }
+    return busy;
+  }
+
+  // Prepared statements of the connection.
+  int Prepared() {
+    int count = 0;
+    for (sqlite3_stmt* s = sqlite3_next_stmt(db_->handle(), nullptr);
+         s != nullptr; s = sqlite3_next_stmt(db_->handle(), s)) {
+      ++count;
+    }
+    return count;
+  }
+
+  std::unique_ptr<Database> db_;
+};
+
+constexpr const char* kSelect = "SELECT v FROM t WHERE k >= ? ORDER BY k";
+
+TEST_F(CachedStatementTest, IsPreparedOnceForItsText) {
+  for (int i = 0; i < 3; ++i) {
+    Result<Statement> select = db_->Cached(kSelect);
+    ASSERT_TRUE(select.ok()) << select.status().ToString();
+  }
+  EXPECT_EQ(Prepared(), 1);
+  Result<Statement> other = db_->Cached("SELECT COUNT(*) FROM t");
+  ASSERT_TRUE(other.ok());
+  EXPECT_EQ(Prepared(), 2);
+}
+
+TEST_F(CachedStatementTest, ComesBackResetWithBindingsCleared) {
+  {
+    Result<Statement> select = db_->Cached(kSelect);
+    ASSERT_TRUE(select.ok());
+    select->Bind(1, int64_t{3});
+    Result<bool> row = select->Step();
+    ASSERT_TRUE(row.ok() && *row);
+    EXPECT_EQ(select->Text(0), "c");
+    EXPECT_EQ(Busy(), 1);  // Dropped part-way through.
+  }
+  EXPECT_EQ(Busy(), 0);  // No read left open.
+  Result<Statement> again = db_->Cached(kSelect);
+  ASSERT_TRUE(again.ok());
+  // An unbound parameter is NULL: `k >= NULL` matches nothing.
+  Result<bool> row = again->Step();
+  ASSERT_TRUE(row.ok());
+  EXPECT_FALSE(*row);
+  again->Reset();
+  again->Bind(1, int64_t{1});
+  std::string all;
+  for (Result<bool> r = again->Step(); r.ok() && *r; r = again->Step()) {
+    all += again->Text(0);
+  }
+  EXPECT_EQ(all, "abc");
+}
+
+TEST_F(CachedStatementTest, ATextLentOutGetsAStatementOfItsOwn) {
+  Result<Statement> outer = db_->Cached(kSelect);
+  ASSERT_TRUE(outer.ok());
+  outer->Bind(1, int64_t{1});
+  std::string pairs;
+  for (Result<bool> r = outer->Step(); r.ok() && *r; r = outer->Step()) {
+    Result<Statement> inner = db_->Cached(kSelect);  // Same text, nested.
+    ASSERT_TRUE(inner.ok());
+    inner->Bind(1, int64_t{3});
+    Result<bool> row = inner->Step();
+    ASSERT_TRUE(row.ok() && *row);
+    pairs += outer->Text(0) + inner->Text(0) + " ";
+  }
+  EXPECT_EQ(pairs, "ac bc cc ");
+  EXPECT_EQ(Prepared(), 1);  // The nested one was finalized.
+}
+
+TEST_F(CachedStatementTest, MovedStatementReturnsItOnce) {
+  {
+    Result<Statement> select = db_->Cached(kSelect);
+    ASSERT_TRUE(select.ok());
+    Statement moved = std::move(select).value();
+    moved.Bind(1, int64_t{2});
+    Result<bool> row = moved.Step();
+    ASSERT_TRUE(row.ok() && *row);
+    EXPECT_EQ(moved.Text(0), "b");
+  }
+  EXPECT_EQ(Busy(), 0);
+  // Lent out again (not prepared anew): it was returned.
+  Result<Statement> again = db_->Cached(kSelect);
+  ASSERT_TRUE(again.ok());
+  EXPECT_EQ(Prepared(), 1);
+}
+
+TEST_F(CachedStatementTest, BadSqlFailsNamingIt) {
+  Result<Statement> bad = db_->Cached("SELECT nothing FROM nowhere");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.status().message().find("SELECT nothing"), std::string::npos)
+      << bad.status().ToString();
+  EXPECT_EQ(Prepared(), 0);
+}
+
+TEST_F(CachedStatementTest, KeepsWorkingAfterTheSchemaChanges) {
+  {
+    Result<Statement> select = db_->Cached(kSelect);
+    ASSERT_TRUE(select.ok());
+  }
+  ASSERT_TRUE(db_->Execute("ALTER TABLE t ADD COLUMN w INTEGER;"
+                           "INSERT INTO t (k, v) VALUES (4, 'd');")
+                  .ok());
+  Result<Statement> select = db_->Cached(kSelect);
+  ASSERT_TRUE(select.ok());
+  select->Bind(1, int64_t{4});
+  Result<bool> row = select->Step();
+  ASSERT_TRUE(row.ok() && *row) << (row.ok() ? "" : row.status().ToString());
+  EXPECT_EQ(select->Text(0), "d");
+}
+
+}  // namespace
+}  // namespace animat::sql
