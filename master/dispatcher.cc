@@ -5,6 +5,8 @@
 #include <zmq.hpp>
 
 #include "common/protocol/zmq_poll.h"
+#include "common/security/curve_keys.h"
+#include "master/zap_authenticator.h"
 
 namespace animat {
 namespace {
@@ -23,8 +25,38 @@ int CreditCap(int threads) {
 Result<std::unique_ptr<Dispatcher>> Dispatcher::Create(
     zmq::context_t* context, DispatcherOptions options,
     const ModelConfig& config) {
+  const bool curve = !options.curve_secret_key.empty();
+  const bool local = security::IsLocalEndpoint(options.endpoint);
+  if (!curve && !local && !options.insecure) {
+    return Status::InvalidArgument(
+        "listening on " + options.endpoint +
+        " reaches beyond this machine: give the master CurveZMQ keys "
+        "(--curve-secret and --curve-allow, made by animat keygen; "
+        "docs/security.md) or, on a trusted network only, --insecure");
+  }
+  if (curve && (!security::IsZ85Key(options.curve_secret_key) ||
+                options.curve_allowed.empty())) {
+    return Status::InvalidArgument(
+        "CurveZMQ needs a 40-character Z85 secret key and at least one "
+        "allowed worker key");
+  }
   std::unique_ptr<Dispatcher> dispatcher(
       new Dispatcher(context, std::move(options), ConfigToProto(config)));
+  DispatcherOptions& o = dispatcher->options_;
+  if (curve) {
+    // The handler must serve the context before the socket binds.
+    Result<std::unique_ptr<ZapAuthenticator>> zap =
+        ZapAuthenticator::Start(context, o.curve_allowed, o.log);
+    if (!zap.ok()) return zap.status();
+    dispatcher->zap_ = std::move(zap).value();
+    dispatcher->socket_->set(zmq::sockopt::curve_server, 1);
+    dispatcher->socket_->set(zmq::sockopt::curve_secretkey, o.curve_secret_key);
+    dispatcher->socket_->set(zmq::sockopt::zap_domain, "animat");
+  } else if (!local) {
+    o.log("WARNING: listening on " + o.endpoint +
+          " without CurveZMQ (--insecure): anyone who reaches it can read "
+          "the genomes and send results");
+  }
   try {
     dispatcher->socket_->bind(dispatcher->options_.endpoint);
     dispatcher->endpoint_ =
@@ -34,7 +66,11 @@ Result<std::unique_ptr<Dispatcher>> Dispatcher::Create(
                            ": " + e.what());
   }
   dispatcher->options_.log("listening on " + dispatcher->endpoint_ +
-                           " (build " + protocol::BuildId() + ")");
+                           " (build " + protocol::BuildId() + ")" +
+                           (curve ? ", CurveZMQ with " +
+                                        std::to_string(o.curve_allowed.size()) +
+                                        " allowed worker keys"
+                                  : ""));
   return dispatcher;
 }
 

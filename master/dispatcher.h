@@ -40,6 +40,8 @@ class socket_t;
 
 namespace animat {
 
+class ZapAuthenticator;
+
 struct DispatcherOptions {
   std::string endpoint = "tcp://127.0.0.1:5555";  // Where to bind.
   int heartbeat_ms = protocol::kHeartbeatMs;
@@ -47,6 +49,14 @@ struct DispatcherOptions {
   int lease_ms = 10 * 60 * 1000;
   // Accept workers in null-evaluation mode (dispatch benchmarks only).
   bool accept_null_workers = false;
+  // CurveZMQ (docs/security.md): this master's secret key (Z85) and the
+  // worker public keys it serves (Z85 -> name for the log). With a key,
+  // every connection is encrypted and only listed workers get through.
+  // An endpoint beyond loopback requires a key unless `insecure`.
+  std::string curve_secret_key;
+  std::map<std::string, std::string> curve_allowed;
+  // Bind beyond loopback without CurveZMQ (trusted networks only; warns).
+  bool insecure = false;
   LogSink log = Prefixed("dispatcher", StderrSink);
 };
 
@@ -162,6 +172,8 @@ class Dispatcher {
   std::string endpoint_;
   v1::Config config_;
   uint64_t config_hash_;
+  // Declared before the socket: destroyed after it (ZAP outlives it).
+  std::unique_ptr<ZapAuthenticator> zap_;
   std::unique_ptr<zmq::socket_t> socket_;
   std::map<uint64_t, Individual> pending_;
   std::deque<uint64_t> queue_;  // Queued individuals, next first.

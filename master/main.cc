@@ -4,6 +4,8 @@
 //   animat-master --config FILE --db FILE [--bind ENDPOINT]
 //   animat-master --resume --db FILE [--config FILE] [--force]
 //                 [--generations G] [--bind ENDPOINT]
+//   ... --bind tcp://0.0.0.0:5555 --curve-secret MASTER.key
+//       --curve-allow WORKERS.allow        (or --insecure; docs/security.md)
 //
 // SIGTERM or SIGINT: commits what came in, leaves a resumable store and
 // exits 0. Exit 1 on an error (the message says what), 2 on a usage error.
@@ -16,6 +18,7 @@
 #include <CLI/CLI.hpp>
 #include <zmq.hpp>
 
+#include "common/security/curve_keys.h"
 #include "master/dispatcher.h"
 #include "master/progress.h"
 #include "master/run/evolution_run.h"
@@ -50,6 +53,21 @@ int main(int argc, char** argv) {
   app.add_option("--generations", generations,
                  "Run this many generations in all (extends a finished run)")
       ->check(CLI::Range(1, 100000000));
+  std::string curve_secret_file, curve_allow_file;
+  bool insecure = false;
+  auto* secret = app.add_option(
+      "--curve-secret", curve_secret_file,
+      "CurveZMQ: the master's key pair file (animat keygen); needed to "
+      "listen beyond loopback");
+  auto* allow =
+      app.add_option("--curve-allow", curve_allow_file,
+                     "CurveZMQ: the worker public keys to serve, one per line");
+  auto* insecure_flag = app.add_flag(
+      "--insecure", insecure,
+      "Listen beyond loopback without CurveZMQ (trusted networks only)");
+  secret->needs(allow);
+  allow->needs(secret);
+  insecure_flag->excludes(secret);
   app.add_option("--heartbeat-ms", heartbeat_ms, "Heartbeat interval")
       ->check(CLI::Range(10, 600000))
       ->capture_default_str();
@@ -63,6 +81,27 @@ int main(int argc, char** argv) {
     return Fail("--config is needed to start a run (or --resume)");
   }
   google::protobuf::SetLogHandler(nullptr);
+
+  // Keys before the store: a master that cannot listen changes nothing.
+  animat::DispatcherOptions options;
+  options.endpoint = bind;
+  options.heartbeat_ms = heartbeat_ms;
+  options.insecure = insecure;
+  if (!curve_secret_file.empty()) {
+    animat::Result<animat::security::CurveKeyPair> pair =
+        animat::security::ReadKeyPair(curve_secret_file);
+    if (!pair.ok()) return Fail(pair.status().message());
+    auto allowed = animat::security::ReadAllowList(curve_allow_file);
+    if (!allowed.ok()) return Fail(allowed.status().message());
+    options.curve_secret_key = pair->secret_key;
+    options.curve_allowed = std::move(allowed).value();
+  } else if (!insecure && !animat::security::IsLocalEndpoint(bind)) {
+    return Fail("listening on " + bind +
+                " reaches beyond this machine: give the master CurveZMQ keys "
+                "(--curve-secret and --curve-allow, made by animat keygen; "
+                "docs/security.md) or, on a trusted network only, "
+                "--insecure");
+  }
 
   std::optional<animat::RunSettings> settings;
   if (!config_path.empty()) {
@@ -88,9 +127,6 @@ int main(int argc, char** argv) {
   sigaction(SIGINT, &action, nullptr);
 
   zmq::context_t context(1);
-  animat::DispatcherOptions options;
-  options.endpoint = bind;
-  options.heartbeat_ms = heartbeat_ms;
   auto dispatcher =
       animat::Dispatcher::Create(&context, options, (*run)->model_config());
   if (!dispatcher.ok()) return Fail(dispatcher.status().message());
