@@ -65,8 +65,8 @@ wait_job_gone() {
   fail "job $1 did not end"
 }
 
-submit() {
-  ANIMAT_DB="$work/run.db" ANIMAT_CONFIG="$work/run.txtpb" \
+submit() {  # [KEYS_DIR]: with CurveZMQ keys
+  ANIMAT_KEYS="${1:-}" ANIMAT_DB="$work/run.db" ANIMAT_CONFIG="$work/run.txtpb" \
     ANIMAT_BIN="$bin" ANIMAT_PORT=25555 \
     sbatch --parsable --ntasks=2 --output="$work/job-%j.log" \
       "$source_dir/deploy/slurm/animat.sbatch"
@@ -100,13 +100,17 @@ grep -q "master exited with status 0" "$work/job-$job.log" ||
 [ "$(run_state "$work/run.db")" = running ] ||
   fail "the store does not show a resumable run"
 
-# 3. Resubmit; let it finish.
-job=$(submit)
+# 3. Resubmit with CurveZMQ keys (the several-node set-up, on one node);
+# let it finish.
+"$bin/animat" keygen --cluster "$work/keys" > /dev/null
+job=$(submit "$work/keys")
 echo "slurm_test: job $job resubmitted"
 wait_job_gone "$job"
 [ "$(run_state "$work/run.db")" = finished ] ||
   fail "the run did not finish"
 grep -q "resuming" "$work/job-$job.log" || fail "the last job did not resume"
+grep -q "CurveZMQ with 1 allowed worker keys" "$work/job-$job.log" ||
+  fail "the last job did not use CurveZMQ"
 
 # The same individuals, parents, evaluations and generations as the
 # uninterrupted run.
