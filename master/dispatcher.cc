@@ -360,7 +360,13 @@ void Dispatcher::Dispatch() {
       if (drainer_ == identity) continue;
     }
     while (worker.credit > 0 && !queue_.empty()) {
-      WorkEncoder work(config_hash_);
+      // Room for a batch of items like the next one.
+      const size_t batch = static_cast<size_t>(
+          std::min(worker.credit, static_cast<int>(protocol::kMaxBatch)));
+      WorkEncoder work(
+          config_hash_,
+          std::min(protocol::kMaxWorkBytes,
+                   batch * (pending_.at(queue_.front()).item.size() + 8)));
       std::vector<uint64_t> items;
       while (worker.credit > 0 && !queue_.empty() &&
              work.items() < protocol::kMaxBatch) {

@@ -63,8 +63,10 @@ std::string EncodeWorkItem(uint64_t individual,
 // length (at most 10), the config hash field (9).
 constexpr size_t kHeadRoom = 32;
 
-WorkEncoder::WorkEncoder(uint64_t config_hash)
-    : config_hash_(config_hash), out_(kHeadRoom, '\0') {}
+WorkEncoder::WorkEncoder(uint64_t config_hash, size_t expected_bytes)
+    : config_hash_(config_hash), out_(kHeadRoom, '\0') {
+  if (expected_bytes > 0) out_.reserve(kHeadRoom + expected_bytes);
+}
 
 void WorkEncoder::Add(std::string_view item) {
   if (out_.capacity() < out_.size() + item.size() + 16) {

@@ -25,7 +25,8 @@ std::string EncodeWorkItem(uint64_t individual,
 // One Envelope{protocol_version: kVersion, work: Work{config_hash, items}}.
 class WorkEncoder {
  public:
-  explicit WorkEncoder(uint64_t config_hash);
+  // `expected_bytes`: of the items to come, if known (saves reallocation).
+  explicit WorkEncoder(uint64_t config_hash, size_t expected_bytes = 0);
 
   // Appends an item made by EncodeWorkItem.
   void Add(std::string_view item);

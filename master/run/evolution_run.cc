@@ -30,6 +30,12 @@ std::vector<Scored> ToScored(const std::vector<lineage::Score>& scores) {
 
 }  // namespace
 
+const Genome* EvolutionRun::GenomesById::Find(uint64_t id) const {
+  const auto it = std::lower_bound(ids.begin(), ids.end(), id);
+  if (it == ids.end() || *it != id) return nullptr;
+  return &genomes[static_cast<size_t>(it - ids.begin())];
+}
+
 double NullEvaluationFitness(uint64_t seed, uint64_t id) {
   return RandomStream(seed, id, StreamPurpose::kNullFitness).NextDouble();
 }
@@ -119,7 +125,13 @@ Status EvolutionRun::Flush() {
   if (unsaved_.empty()) return Status::Ok();
   Status status = store_->RecordEvaluations(run_id_, unsaved_);
   if (!status.ok()) return status;
-  for (const lineage::Evaluation& e : unsaved_) awaited_.erase(e.id);
+  for (const lineage::Evaluation& e : unsaved_) {
+    const uint64_t i = e.id - awaited_first_;
+    if (e.id >= awaited_first_ && i < awaited_.size() && awaited_[i]) {
+      awaited_[i] = false;
+      --awaited_left_;
+    }
+  }
   unsaved_.clear();
   return status;
 }
@@ -174,7 +186,7 @@ Status EvolutionRun::Run(
       last_flush = now;
       // Nothing can advance while the latest generation awaits results;
       // with nothing pending at all, the store is asked in any case.
-      if (status.ok() && (awaited_.empty() || dispatcher->pending() == 0)) {
+      if (status.ok() && (awaited_left_ == 0 || dispatcher->pending() == 0)) {
         status = Advance(dispatcher, progress);
       }
     }
@@ -186,6 +198,9 @@ Status EvolutionRun::Run(
 Status EvolutionRun::Advance(
     Dispatcher* dispatcher,
     const std::function<void(const GenerationReport&)>& progress) {
+  // The scores of the generation completed last in this call, if any.
+  int completed = -1;
+  std::vector<lineage::Score> completed_scores;
   for (;;) {
     Result<std::optional<lineage::GenerationRow>> latest =
         store_->LatestGenerationHead(run_id_);
@@ -198,6 +213,8 @@ Status EvolutionRun::Advance(
     }
     const lineage::GenerationRow& generation = **latest;
     if (!generation.complete) {
+      // Offspring still out: the store would say the same.
+      if (awaited_left_ > 0 && dispatcher->pending() > 0) return Status::Ok();
       Result<std::vector<lineage::Score>> scores =
           store_->MemberScores(run_id_, generation.generation);
       if (!scores.ok()) return scores.status();
@@ -207,6 +224,8 @@ Status EvolutionRun::Advance(
       Status status =
           CompleteGeneration(generation.generation, *scores, progress);
       if (!status.ok()) return status;
+      completed = generation.generation;
+      completed_scores = std::move(scores).value();
       continue;
     }
     if (generation.generation + 1 >= params().generations) {
@@ -219,7 +238,10 @@ Status EvolutionRun::Advance(
       }
       return Status::Ok();
     }
-    Status status = MakeGeneration(generation.generation + 1, dispatcher);
+    Status status = MakeGeneration(
+        generation.generation + 1,
+        completed == generation.generation ? &completed_scores : nullptr,
+        dispatcher);
     if (!status.ok()) return status;
   }
 }
@@ -334,34 +356,41 @@ Status EvolutionRun::CompleteGeneration(
   return Status::Ok();
 }
 
-Status EvolutionRun::MakeGeneration(int generation, Dispatcher* dispatcher) {
+Status EvolutionRun::MakeGeneration(
+    int generation, const std::vector<lineage::Score>* previous_scores,
+    Dispatcher* dispatcher) {
   const EvolutionParams& p = params();
   // The previous generation's genomes: those this process made (the store
   // holds the same), or else the store's.
   std::vector<Scored> scored;
   if (genomes_generation_ == generation - 1) {
-    Result<std::vector<lineage::Score>> scores =
-        store_->MemberScores(run_id_, generation - 1);
-    if (!scores.ok()) return scores.status();
-    scored = ToScored(*scores);
+    if (previous_scores != nullptr) {
+      scored = ToScored(*previous_scores);
+    } else {
+      Result<std::vector<lineage::Score>> scores =
+          store_->MemberScores(run_id_, generation - 1);
+      if (!scores.ok()) return scores.status();
+      scored = ToScored(*scores);
+    }
   } else {
     Result<std::vector<lineage::MemberGenome>> previous =
         store_->MemberGenomes(run_id_, generation - 1);
     if (!previous.ok()) return previous.status();
-    genomes_.clear();
+    genomes_ = GenomesById();
     for (const lineage::MemberGenome& member : *previous) {
       Result<Genome> genome = GenomeFromProto(member.genome);
       if (!genome.ok()) {
         return genome.status().WithPrefix("stored genome of individual " +
                                           std::to_string(member.id));
       }
-      genomes_.emplace(member.id, std::move(genome).value());
+      genomes_.ids.push_back(member.id);  // Increasing.
+      genomes_.genomes.push_back(std::move(genome).value());
       scored.push_back({member.id, member.fitness});
     }
     genomes_generation_ = generation - 1;
   }
   for (const Scored& s : scored) {
-    if (genomes_.count(s.id) == 0) {
+    if (genomes_.Find(s.id) == nullptr) {
       return Status::Internal("no genome of member " + std::to_string(s.id) +
                               " of generation " +
                               std::to_string(generation - 1));
@@ -369,17 +398,25 @@ Status EvolutionRun::MakeGeneration(int generation, Dispatcher* dispatcher) {
   }
   const std::vector<Scored> ranked = Rank(std::move(scored));
   std::vector<uint64_t> members;
-  std::map<uint64_t, Genome> next_genomes;
+  GenomesById next_genomes;
+  next_genomes.ids.reserve(static_cast<size_t>(p.population));
+  next_genomes.genomes.reserve(static_cast<size_t>(p.population));
   for (int e = 0; e < p.elite && e < static_cast<int>(ranked.size()); ++e) {
     members.push_back(ranked[e].id);
-    next_genomes.emplace(ranked[e].id, genomes_.at(ranked[e].id));
+    next_genomes.ids.push_back(ranked[e].id);
+  }
+  // The elites by id (all older than the offspring to come).
+  std::sort(next_genomes.ids.begin(), next_genomes.ids.end());
+  for (uint64_t id : next_genomes.ids) {
+    next_genomes.genomes.push_back(*genomes_.Find(id));
   }
   Result<uint64_t> next = store_->NextId(run_id_);
   if (!next.ok()) return next.status();
   const auto genome_of = [&](uint64_t id) -> const Genome& {
-    return genomes_.at(id);
+    return *genomes_.Find(id);
   };
   std::vector<lineage::NewIndividual> children;
+  children.reserve(static_cast<size_t>(p.population));
   for (uint64_t id = *next; members.size() < static_cast<size_t>(p.population);
        ++id) {
     Offspring offspring = MakeOffspring(id, ranked, genome_of, p);
@@ -392,13 +429,16 @@ Status EvolutionRun::MakeGeneration(int generation, Dispatcher* dispatcher) {
     n.serialized = protocol::SerializeGenome(n.genome);
     members.push_back(id);
     children.push_back(std::move(n));
-    next_genomes.emplace(id, std::move(offspring.genome));
+    next_genomes.ids.push_back(id);
+    next_genomes.genomes.push_back(std::move(offspring.genome));
   }
   Status status = store_->AddGeneration(run_id_, generation, members, children);
   if (!status.ok()) return status;
   genomes_ = std::move(next_genomes);
   genomes_generation_ = generation;
-  for (const lineage::NewIndividual& n : children) awaited_.insert(n.id);
+  awaited_first_ = *next;
+  awaited_.assign(children.size(), true);
+  awaited_left_ = children.size();
   return Submit(children, dispatcher);
 }
 

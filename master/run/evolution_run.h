@@ -20,7 +20,6 @@
 #include <map>
 #include <memory>
 #include <optional>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -110,7 +109,10 @@ class EvolutionRun {
   Status CompleteGeneration(
       int generation, const std::vector<lineage::Score>& scores,
       const std::function<void(const GenerationReport&)>& progress);
-  Status MakeGeneration(int generation, Dispatcher* dispatcher);
+  // `previous_scores`: of generation - 1's members, when at hand.
+  Status MakeGeneration(int generation,
+                        const std::vector<lineage::Score>* previous_scores,
+                        Dispatcher* dispatcher);
   Status Submit(const std::vector<lineage::NewIndividual>& made,
                 Dispatcher* dispatcher);
   Status Flush();
@@ -122,15 +124,24 @@ class EvolutionRun {
   bool finished_ = false;
   bool score_null_evaluations_ = false;
   std::vector<lineage::Evaluation> unsaved_;  // Results not yet committed.
-  // Offspring of the latest generation whose results are not committed:
+  // Offspring of the latest generation whose results are not committed
+  // (ids awaited_first_ + i with awaited_[i] set; awaited_left_ of them):
   // until none is left, Run does not ask the store whether the generation
   // is complete (unless nothing at all is pending). A hint only; the
   // store decides.
-  std::set<uint64_t> awaited_;
+  uint64_t awaited_first_ = 0;
+  std::vector<bool> awaited_;
+  size_t awaited_left_ = 0;
+  // Genomes by id, ids increasing.
+  struct GenomesById {
+    std::vector<uint64_t> ids;
+    std::vector<Genome> genomes;
+    const Genome* Find(uint64_t id) const;
+  };
   // The genomes of generation genomes_generation_'s members as this process
   // made them (the store holds the same), so the next generation is made
   // without reading them back; -1 when there are none.
-  std::map<uint64_t, Genome> genomes_;
+  GenomesById genomes_;
   int genomes_generation_ = -1;
   int64_t evaluations_ = 0;
   double started_ = 0;      // Seconds, steady clock.
