@@ -131,13 +131,15 @@ TEST(SchemaTest, NewStoreHasCurrentVersionTablesViewsAndIndexes) {
   }
 }
 
-TEST(SchemaTest, FileStoreUsesWalFullSyncAndForeignKeys) {
+TEST(SchemaTest, FileStoreUsesWalNormalSyncForeignKeysAndLargeCache) {
   TempStorePath file("pragmas");
   Result<std::unique_ptr<Store>> store = Store::Open(file.path());
   ASSERT_TRUE(store.ok()) << store.status().ToString();
   EXPECT_EQ(Value(**store, "PRAGMA journal_mode"), "wal");
-  EXPECT_EQ(Value(**store, "PRAGMA synchronous"), "2");  // FULL.
+  EXPECT_EQ(Value(**store, "PRAGMA synchronous"), "1");  // NORMAL.
   EXPECT_EQ(Value(**store, "PRAGMA foreign_keys"), "1");
+  EXPECT_EQ(Value(**store, "PRAGMA cache_size"), "-65536");  // KiB.
+  EXPECT_EQ(Value(**store, "PRAGMA wal_autocheckpoint"), "16384");
 }
 
 TEST(SchemaTest, EmptyFileIsMigratedFromVersionZero) {
