@@ -5,6 +5,7 @@
 //       [--workers W] [--threads T] [--db FILE] [--endpoint ENDPOINT]
 //
 // (defaults: 5000 and 10, about 51,000 individuals; 2 workers of 64).
+//
 // The real master path: animat-master's run loop (EvolutionRun) makes each
 // individual, commits it to the lineage store (an SQLite file on disk,
 // opened as animat-master opens it, so WAL and the same pragmas), submits
