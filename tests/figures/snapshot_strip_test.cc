@@ -1,0 +1,108 @@
+#include "figures/snapshot_strip.h"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "tests/analysis/synthetic_swimmer.h"
+#include "tests/figures/xml.h"
+
+namespace animat::figures {
+namespace {
+
+struct Swim {
+  analysis::Recording recording;
+  analysis::Analysis analysis;
+};
+
+StripOptions Strip(int snapshots, std::optional<int64_t> start = {}) {
+  StripOptions options;
+  options.snapshots = snapshots;
+  options.start_step = start;
+  return options;
+}
+
+Swim Analyse(const testing::SyntheticSwimmer& swimmer) {
+  Swim s;
+  Result<analysis::Recording> r = analysis::RecordingFromTrace(swimmer.Trace());
+  EXPECT_TRUE(r.ok()) << r.status().ToString();
+  if (!r.ok()) return s;
+  s.recording = std::move(r).value();
+  Result<analysis::Analysis> a = analysis::Analyze(s.recording, {});
+  EXPECT_TRUE(a.ok()) << a.status().ToString();
+  if (a.ok()) s.analysis = std::move(a).value();
+  return s;
+}
+
+TEST(SnapshotStripTest, ShowsOneCycleInEvenSteps) {
+  const Swim s = Analyse(testing::SyntheticSwimmer{});  // Period 80.
+  Result<std::vector<int>> frames =
+      CycleFrames(s.recording, s.analysis, Strip(6));
+  ASSERT_TRUE(frames.ok()) << frames.status().ToString();
+  // One frame per step from step 0, so frame k is step k: from step 2000,
+  // 80 / 6 = 13.3 steps apart, then the cycle's end.
+  EXPECT_EQ(*frames,
+            (std::vector<int>{2000, 2013, 2027, 2040, 2053, 2067, 2080}));
+}
+
+TEST(SnapshotStripTest, HasOneSnapshotPerFrameWithEveryCellAndSpring) {
+  const Swim s = Analyse(testing::SyntheticSwimmer{});
+  Result<std::string> svg = SnapshotStripSvg(s.recording, s.analysis, Strip(6));
+  ASSERT_TRUE(svg.ok()) << svg.status().ToString();
+  testing::XmlReader reader;
+  std::optional<testing::XmlElement> root = reader.Parse(*svg);
+  ASSERT_TRUE(root.has_value()) << reader.error();
+  const auto snapshots = root->FindAll("g", "snapshot");
+  ASSERT_EQ(snapshots.size(), 6u);
+  const char* steps[] = {"2000", "2013", "2027", "2040", "2053", "2067"};
+  for (size_t j = 0; j < snapshots.size(); ++j) {
+    EXPECT_EQ(snapshots[j]->Attribute("data-step"), steps[j]);
+    EXPECT_EQ(snapshots[j]->FindAll("circle", "cell").size(), 8u);
+    EXPECT_EQ(snapshots[j]->FindAll("line", "spring").size(), 10u);
+  }
+  EXPECT_EQ(root->FindAll("g", "distance").size(), 1u);
+  EXPECT_EQ(snapshots.back()->FindAll("g", "distance").size(), 1u);
+}
+
+TEST(SnapshotStripTest, ColoursCellsByWhatTheyDoToTheirSprings) {
+  // Every cell in phase: e − c = 0.3 cos(2π step / 80). At step 2000 it
+  // peaks (its rate, 0.3 (1 − cos(2π/80)) ≈ 9e-4 per step, is below the
+  // neutral rate); a sixth of a period later it falls, and two thirds
+  // later it rises.
+  const Swim s = Analyse(testing::SyntheticSwimmer{});
+  Result<std::string> svg = SnapshotStripSvg(s.recording, s.analysis, Strip(6));
+  ASSERT_TRUE(svg.ok());
+  testing::XmlReader reader;
+  std::optional<testing::XmlElement> root = reader.Parse(*svg);
+  ASSERT_TRUE(root.has_value());
+  const auto snapshots = root->FindAll("g", "snapshot");
+  ASSERT_EQ(snapshots.size(), 6u);
+  auto colours = [&](int j) {
+    std::set<std::string> fills;
+    for (const testing::XmlElement* c :
+         snapshots[j]->FindAll("circle", "cell")) {
+      fills.insert(c->Attribute("fill"));
+    }
+    return fills;
+  };
+  EXPECT_EQ(colours(0), std::set<std::string>{"#2ca02c"});  // Neutral.
+  EXPECT_EQ(colours(1), std::set<std::string>{"#1f77b4"});  // Contracting.
+  EXPECT_EQ(colours(4), std::set<std::string>{"#d62728"});  // Expanding.
+}
+
+TEST(SnapshotStripTest, NeedsAPeriodAndACycleThatFits) {
+  testing::SyntheticSwimmer still;
+  still.amplitude.assign(8, 0.0);
+  const Swim no_period = Analyse(still);
+  EXPECT_FALSE(
+      SnapshotStripSvg(no_period.recording, no_period.analysis, {}).ok());
+
+  const Swim s = Analyse(testing::SyntheticSwimmer{});
+  EXPECT_FALSE(SnapshotStripSvg(s.recording, s.analysis, Strip(6, 3950)).ok());
+  EXPECT_TRUE(SnapshotStripSvg(s.recording, s.analysis, Strip(6, 3900)).ok());
+  EXPECT_FALSE(SnapshotStripSvg(s.recording, s.analysis, Strip(0)).ok());
+  EXPECT_FALSE(SnapshotStripSvg(s.recording, s.analysis, Strip(81)).ok());
+}
+
+}  // namespace
+}  // namespace animat::figures
