@@ -17,6 +17,8 @@ int main(int argc, char** argv) {
   commands["scene"] = animat::cli::AddSceneCommand(app);
   commands["evolve"] = animat::cli::AddEvolveCommand(app);
   commands["lineage"] = animat::cli::AddLineageCommand(app);
+  commands["analyze"] = animat::cli::AddAnalyzeCommand(app);
+  commands["figure"] = animat::cli::AddFigureCommand(app);
   commands["keygen"] = animat::cli::AddKeygenCommand(app);
   commands["render"] = animat::cli::AddRenderCommand(app);
   try {

@@ -1,0 +1,336 @@
+// animat figure strip|activity|cells|fitness|contact-sheet ... -o FILE.svg
+//
+// The paper's Fig. 4 panels for one animat (snapshot strip, activity along
+// the body axes, expansion and contraction of chosen cells) and two
+// figures of an evolution (fitness over generations, a contact sheet of
+// the best every N generations); docs/analysis.md.
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "analysis/analyze.h"
+#include "cli/animat_source.h"
+#include "cli/commands.h"
+#include "common/evaluation/evaluator.h"
+#include "common/evaluation/trace_recorder.h"
+#include "common/genome/genome_proto.h"
+#include "common/io/proto_file.h"
+#include "figures/analysis_plots.h"
+#include "figures/contact_sheet.h"
+#include "figures/line_plot.h"
+#include "figures/snapshot_strip.h"
+#include "figures/svg.h"
+#include "master/lineage/queries.h"
+#include "master/lineage/store.h"
+
+namespace animat::cli {
+namespace {
+
+struct Options {
+  AnimatSource source;
+  std::optional<int64_t> from;
+  std::optional<int64_t> to;
+  std::string output;
+  // strip
+  int snapshots = 6;
+  std::optional<int64_t> start;
+  // activity, cells
+  double cycles = 4;
+  std::vector<int> cells;
+  // fitness, contact-sheet
+  std::vector<std::string> dbs;
+  int every = 5;
+  int columns = 4;
+};
+
+Status CheckSvgPath(const std::string& path) {
+  if (path.size() < 4 || path.substr(path.size() - 4) != ".svg") {
+    return Status::InvalidArgument(path + ": the figure is SVG; name it .svg");
+  }
+  return Status::Ok();
+}
+
+int Write(const std::string& path, const std::string& svg) {
+  Status status = WriteFile(path, svg);
+  if (!status.ok()) return Fail(status.message());
+  return 0;
+}
+
+// The analysed animat, for the per-animat figures.
+struct Analysed {
+  analysis::Recording recording;
+  analysis::Analysis analysis;
+};
+
+Result<Analysed> LoadAndAnalyse(const Options& o) {
+  Result<v1::Trace> trace = LoadAnimatTrace(o.source);
+  if (!trace.ok()) return trace.status();
+  Result<analysis::Recording> recording = analysis::RecordingFromTrace(*trace);
+  if (!recording.ok()) return recording.status();
+  Result<analysis::Analysis> result =
+      analysis::Analyze(*recording, {.from_step = o.from, .to_step = o.to});
+  if (!result.ok()) return result.status();
+  return Analysed{std::move(recording).value(), std::move(result).value()};
+}
+
+int Strip(const Options& o) {
+  Result<Analysed> a = LoadAndAnalyse(o);
+  if (!a.ok()) return Fail(a.status().message());
+  Result<std::string> svg = figures::SnapshotStripSvg(
+      a->recording, a->analysis,
+      {.snapshots = o.snapshots, .start_step = o.start});
+  if (!svg.ok()) return Fail(svg.status().message());
+  return Write(o.output, *svg);
+}
+
+int Activity(const Options& o) {
+  Result<Analysed> a = LoadAndAnalyse(o);
+  if (!a.ok()) return Fail(a.status().message());
+  return Write(
+      o.output,
+      figures::LinePlotSvg(figures::ActivityPlot(
+          a->analysis, figures::DefaultStepRange(a->analysis, o.cycles))));
+}
+
+int Cells(const Options& o) {
+  Result<Analysed> a = LoadAndAnalyse(o);
+  if (!a.ok()) return Fail(a.status().message());
+  const std::vector<int> cells =
+      o.cells.empty() ? figures::DefaultCells(a->analysis, 2) : o.cells;
+  Result<figures::LinePlot> plot =
+      figures::CellsPlot(a->recording, a->analysis, cells,
+                         figures::DefaultStepRange(a->analysis, o.cycles));
+  if (!plot.ok()) return Fail(plot.status().message());
+  return Write(o.output, figures::LinePlotSvg(*plot));
+}
+
+struct StoreRun {
+  std::unique_ptr<lineage::Store> store;
+  int64_t run = 0;
+  lineage::RunRow row;
+};
+
+Result<StoreRun> OpenRun(const std::string& db, std::optional<int64_t> run) {
+  StoreRun s;
+  Result<std::unique_ptr<lineage::Store>> store =
+      lineage::Store::OpenForQueries(db);
+  if (!store.ok()) return store.status();
+  s.store = std::move(store).value();
+  Result<int64_t> id = lineage::ChooseRun(*s.store, run);
+  if (!id.ok()) return id.status();
+  s.run = *id;
+  Result<std::vector<lineage::RunRow>> runs = s.store->Runs();
+  if (!runs.ok()) return runs.status();
+  for (const lineage::RunRow& row : *runs) {
+    if (row.run_id == s.run) s.row = row;
+  }
+  return s;
+}
+
+// One completed generation's statistics.
+struct GenerationStatistics {
+  int generation = 0;
+  std::optional<uint64_t> best_id;
+  std::optional<double> best, mean, median;
+};
+
+Result<std::vector<GenerationStatistics>> ReadStatistics(StoreRun& s) {
+  Result<sql::Statement> select = s.store->database().Prepare(
+      "SELECT generation, best_id, best_fitness, mean_fitness,"
+      " median_fitness FROM generation_statistics"
+      " WHERE run_id = ? AND completed_at IS NOT NULL ORDER BY generation");
+  if (!select.ok()) return select.status();
+  select->Bind(1, s.run);
+  std::vector<GenerationStatistics> rows;
+  for (;;) {
+    Result<bool> row = select->Step();
+    if (!row.ok()) return row.status();
+    if (!*row) break;
+    GenerationStatistics g;
+    g.generation = static_cast<int>(select->Int(0));
+    if (!select->IsNull(1)) g.best_id = static_cast<uint64_t>(select->Int(1));
+    if (!select->IsNull(2)) g.best = select->Double(2);
+    if (!select->IsNull(3)) g.mean = select->Double(3);
+    if (!select->IsNull(4)) g.median = select->Double(4);
+    rows.push_back(g);
+  }
+  return rows;
+}
+
+int Fitness(const Options& o) {
+  if (o.dbs.empty()) return Fail("figure fitness needs --db FILE");
+  std::vector<figures::FitnessCurves> runs;
+  for (const std::string& db : o.dbs) {
+    Result<StoreRun> s = OpenRun(db, o.source.run);
+    if (!s.ok()) return Fail(s.status().message());
+    Result<std::vector<GenerationStatistics>> rows = ReadStatistics(*s);
+    if (!rows.ok()) return Fail(rows.status().message());
+    if (rows->empty()) return Fail(db + ": no completed generation yet");
+    figures::FitnessCurves curves;
+    curves.label = "seed " + std::to_string(s->row.seed);
+    for (const GenerationStatistics& g : *rows) {
+      curves.generation.push_back(g.generation);
+      curves.best.push_back(g.best);
+      curves.mean.push_back(g.mean);
+      curves.median.push_back(g.median);
+    }
+    runs.push_back(std::move(curves));
+  }
+  return Write(o.output, figures::LinePlotSvg(figures::FitnessPlot(runs)));
+}
+
+// Develops and simulates `genome`, for the sheet: the body at the start of
+// motion and the path of its centre of mass.
+figures::SheetEntry Picture(const v1::Genome& message,
+                            const ModelConfig& config) {
+  figures::SheetEntry entry;
+  Result<Genome> genome = GenomeFromProto(message);
+  if (!genome.ok()) return entry;
+  TraceRecorder recorder(config, 50);
+  Evaluate(*genome, config, &recorder);
+  const v1::Trace& trace = recorder.trace();
+  bool first = true;
+  for (const v1::MotionFrame& frame : trace.frames()) {
+    if (frame.phase() != v1::MotionFrame::MOTION || frame.x_size() == 0) {
+      continue;
+    }
+    Vec2 centre;
+    for (int i = 0; i < frame.x_size(); ++i) {
+      centre += Vec2(frame.x(i), frame.y(i));
+      if (first) entry.cells.push_back({frame.x(i), frame.y(i)});
+    }
+    entry.path.push_back(centre / static_cast<double>(frame.x_size()));
+    first = false;
+  }
+  if (!entry.cells.empty()) {
+    for (const v1::Spring& s : trace.body().springs()) {
+      entry.springs.push_back(
+          {static_cast<int>(s.a()), static_cast<int>(s.b())});
+    }
+  }
+  return entry;
+}
+
+std::string FitnessText(const std::optional<double>& fitness) {
+  return fitness ? figures::Number(*fitness, 4) : "no fitness";
+}
+
+int ContactSheet(const Options& o) {
+  if (o.dbs.size() != 1) return Fail("figure contact-sheet needs one --db");
+  Result<StoreRun> s = OpenRun(o.dbs[0], o.source.run);
+  if (!s.ok()) return Fail(s.status().message());
+  ModelConfig config;
+  Status status = ConfigFromProto(s->row.config.model(), &config);
+  if (!status.ok()) return Fail(status.WithPrefix(o.dbs[0]).message());
+  Result<std::vector<GenerationStatistics>> rows = ReadStatistics(*s);
+  if (!rows.ok()) return Fail(rows.status().message());
+  if (rows->empty()) return Fail(o.dbs[0] + ": no completed generation yet");
+  std::vector<figures::SheetEntry> entries;
+  std::map<uint64_t, figures::SheetEntry> pictures;  // By id: elites repeat.
+  for (size_t r = 0; r < rows->size(); ++r) {
+    const GenerationStatistics& g = (*rows)[r];
+    if (g.generation % o.every != 0 && r + 1 != rows->size()) continue;
+    figures::SheetEntry entry;
+    if (g.best_id) {
+      auto it = pictures.find(*g.best_id);
+      if (it == pictures.end()) {
+        Result<lineage::IndividualRow> individual =
+            s->store->Individual(s->run, *g.best_id);
+        if (!individual.ok()) return Fail(individual.status().message());
+        it = pictures.emplace(*g.best_id, Picture(individual->genome, config))
+                 .first;
+      }
+      entry = it->second;
+      entry.caption = "id " + std::to_string(*g.best_id) + ", fitness " +
+                      FitnessText(g.best);
+    } else {
+      entry.caption = "no individual with a fitness";
+    }
+    entry.heading = "generation " + std::to_string(g.generation);
+    entries.push_back(std::move(entry));
+  }
+  const std::string title = "Best individual every " + std::to_string(o.every) +
+                            " generations (seed " +
+                            std::to_string(s->row.seed) + ")";
+  return Write(o.output, figures::ContactSheetSvg(title, entries, o.columns));
+}
+
+}  // namespace
+
+Command AddFigureCommand(CLI::App& app) {
+  auto o = std::make_shared<Options>();
+  CLI::App* figure = app.add_subcommand(
+      "figure", "SVG figures of an animat or an evolution (docs/analysis.md)");
+  figure->require_subcommand(1);
+  auto output = [&](CLI::App* sub) {
+    sub->add_option("-o,--output", o->output, "Output file (.svg)")->required();
+  };
+  auto animat = [&](CLI::App* sub) {
+    AddAnimatSourceOptions(sub, &o->source);
+    sub->add_option("--from", o->from,
+                    "First motion step analysed (default: half way)");
+    sub->add_option("--to", o->to, "Last motion step analysed (default: last)");
+    output(sub);
+  };
+  CLI::App* strip = figure->add_subcommand(
+      "strip", "Snapshots over one motion cycle (the paper's Fig. 4.1)");
+  animat(strip);
+  strip->add_option("--snapshots", o->snapshots, "Snapshots in the cycle")
+      ->check(CLI::Range(1, 24))
+      ->capture_default_str();
+  strip->add_option("--start", o->start,
+                    "Motion step the cycle starts at (default: --from)");
+  CLI::App* activity = figure->add_subcommand(
+      "activity",
+      "Mean cell activity along the front-back and left-right axes (Fig. "
+      "4.2)");
+  animat(activity);
+  CLI::App* cells = figure->add_subcommand(
+      "cells", "Expansion and contraction of chosen cells (Fig. 4.3)");
+  animat(cells);
+  cells
+      ->add_option("--cells", o->cells,
+                   "Cell indices (default: the two strongest drivers)")
+      ->delimiter(',');
+  for (CLI::App* sub : {activity, cells}) {
+    sub->add_option("--cycles", o->cycles,
+                    "Periods shown from --from (0: the whole window)")
+        ->check(CLI::Range(0.0, 1000.0))
+        ->capture_default_str();
+  }
+  CLI::App* fitness = figure->add_subcommand(
+      "fitness", "Best, mean and median fitness over generations");
+  fitness
+      ->add_option("--db", o->dbs,
+                   "Lineage store (repeat for several runs on one chart)")
+      ->required();
+  fitness->add_option("--run", o->source.run,
+                      "Run in each store (default: the latest)");
+  output(fitness);
+  CLI::App* sheet = figure->add_subcommand(
+      "contact-sheet", "The best individual every N generations");
+  sheet->add_option("--db", o->dbs, "Lineage store")->required();
+  sheet->add_option("--run", o->source.run, "Run (default: the latest)");
+  sheet->add_option("--every", o->every, "Every N generations (and the last)")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  sheet->add_option("--columns", o->columns, "Pictures per row")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
+  output(sheet);
+  return [o, strip, activity, cells, fitness] {
+    Status path = CheckSvgPath(o->output);
+    if (!path.ok()) return Fail(path.message());
+    if (strip->parsed()) return Strip(*o);
+    if (activity->parsed()) return Activity(*o);
+    if (cells->parsed()) return Cells(*o);
+    if (fitness->parsed()) return Fitness(*o);
+    return ContactSheet(*o);
+  };
+}
+
+}  // namespace animat::cli

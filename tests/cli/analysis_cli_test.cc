@@ -1,0 +1,295 @@
+// End-to-end tests of `animat analyze` and `animat figure`: the real
+// binary, real genomes, a real lineage store; figures checked as XML.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "animat/v1/analysis.pb.h"
+#include "animat/v1/trace.pb.h"
+#include "common/io/proto_file.h"
+#include "master/lineage/store.h"
+#include "tests/figures/xml.h"
+#include "tests/test_util.h"
+
+namespace animat {
+namespace {
+
+struct Outcome {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr.
+};
+
+Outcome Animat(const std::string& arguments) {
+  const std::string command =
+      std::string(ANIMAT_BIN_DIR) + "/animat " + arguments + " 2>&1";
+  Outcome run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return run;
+  char buffer[4096];
+  size_t n;
+  while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0) {
+    run.output.append(buffer, n);
+  }
+  const int status = pclose(pipe);
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+std::string Temp(const std::string& name) {
+  return ::testing::TempDir() + "/animat-analysis-" + std::to_string(getpid()) +
+         "-" + name;
+}
+
+// 1200 motion steps: several periods of the sample swimmer, quickly.
+constexpr char kShortModel[] = "evaluation { motion_steps: 1200 }\n";
+
+std::string ShortConfig() {
+  const std::string path = Temp("short.txtpb");
+  EXPECT_TRUE(WriteFile(path, kShortModel).ok());
+  return path;
+}
+
+std::string Swimmer() { return testing::TestData("genomes/seed-1198.json"); }
+
+testing::XmlElement ParseSvg(const std::string& path) {
+  Result<std::string> text = ReadFile(path);
+  EXPECT_TRUE(text.ok()) << path;
+  testing::XmlReader reader;
+  std::optional<testing::XmlElement> root =
+      reader.Parse(text.ok() ? *text : "");
+  EXPECT_TRUE(root.has_value()) << path << ": " << reader.error();
+  EXPECT_EQ(root.has_value() ? root->name : "", "svg");
+  return root.value_or(testing::XmlElement{});
+}
+
+v1::Analysis ReadAnalysis(const std::string& path) {
+  v1::Analysis analysis;
+  Status status = ReadProtoFile(path, &analysis);
+  EXPECT_TRUE(status.ok()) << status.ToString();
+  return analysis;
+}
+
+TEST(AnalysisCliTest, AnalyzeOfAGenomeMatchesAnalyzeOfItsTrace) {
+  const std::string config = ShortConfig();
+  const Outcome simulate =
+      Animat("simulate --genome " + Swimmer() + " --config " + config +
+             " --trace " + Temp("trace.binpb") + " --every 1");
+  ASSERT_EQ(simulate.exit_code, 0) << simulate.output;
+  const Outcome from_genome =
+      Animat("analyze --genome " + Swimmer() + " --config " + config + " -o " +
+             Temp("genome.json"));
+  ASSERT_EQ(from_genome.exit_code, 0) << from_genome.output;
+  const Outcome from_trace = Animat("analyze --trace " + Temp("trace.binpb") +
+                                    " -o " + Temp("trace.json"));
+  ASSERT_EQ(from_trace.exit_code, 0) << from_trace.output;
+  EXPECT_EQ(*ReadFile(Temp("genome.json")), *ReadFile(Temp("trace.json")));
+
+  const v1::Analysis a = ReadAnalysis(Temp("genome.json"));
+  EXPECT_EQ(a.from_step(), 600);  // The second half by default.
+  EXPECT_EQ(a.to_step(), 1200);
+  EXPECT_EQ(a.stride(), 1);
+  EXPECT_EQ(a.cells(), 32);
+  EXPECT_EQ(a.cell_size(), 32);
+  EXPECT_TRUE(a.has_fitness());
+  EXPECT_TRUE(a.has_period_steps());
+  EXPECT_EQ(a.front().cells() + a.back().cells(), 32);
+  EXPECT_FALSE(a.drivers().empty());
+  // The fitness is the simulation's.
+  const std::string fitness_line =
+      simulate.output.substr(simulate.output.find("fitness: ") + 9);
+  EXPECT_EQ(a.fitness(), std::stod(fitness_line));
+}
+
+TEST(AnalysisCliTest, TheWindowAndSpacingAreChosen) {
+  const Outcome run =
+      Animat("analyze --genome " + Swimmer() + " --config " + ShortConfig() +
+             " --every 4 --from 100 --to 1000 -o " + Temp("window.json"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const v1::Analysis a = ReadAnalysis(Temp("window.json"));
+  EXPECT_EQ(a.from_step(), 100);
+  EXPECT_EQ(a.to_step(), 1000);
+  EXPECT_EQ(a.stride(), 4);
+}
+
+TEST(AnalysisCliTest, BadInputIsAClearError) {
+  const Outcome none = Animat("analyze");
+  EXPECT_EQ(none.exit_code, 1);
+  EXPECT_NE(none.output.find("exactly one of --genome"), std::string::npos)
+      << none.output;
+  const Outcome two = Animat("analyze --genome " + Swimmer() + " --trace " +
+                             Temp("trace.binpb"));
+  EXPECT_EQ(two.exit_code, 1);
+  const Outcome failed = Animat(
+      "analyze --genome " + testing::TestData("genomes/seed-1-nonviable.json"));
+  EXPECT_EQ(failed.exit_code, 1);
+  EXPECT_NE(failed.output.find("no path from an input"), std::string::npos)
+      << failed.output;
+  const Outcome window = Animat("analyze --genome " + Swimmer() + " --config " +
+                                ShortConfig() + " --from 5000");
+  EXPECT_EQ(window.exit_code, 1);
+  EXPECT_NE(window.output.find("window"), std::string::npos) << window.output;
+  const Outcome missing = Animat("analyze --trace " + Temp("nowhere.json"));
+  EXPECT_EQ(missing.exit_code, 1);
+  const Outcome no_id = Animat("analyze --db " + Temp("nowhere.db"));
+  EXPECT_EQ(no_id.exit_code, 1);
+  const Outcome not_svg = Animat("figure activity --genome " + Swimmer() +
+                                 " -o " + Temp("activity.png"));
+  EXPECT_EQ(not_svg.exit_code, 1);
+  EXPECT_NE(not_svg.output.find(".svg"), std::string::npos);
+}
+
+TEST(AnalysisCliTest, FiguresOfAnAnimatHaveTheirFramesPanelsAndSeries) {
+  const std::string source =
+      "--genome " + Swimmer() + " --config " + ShortConfig();
+  const Outcome strip = Animat("figure strip " + source + " --snapshots 5 -o " +
+                               Temp("strip.svg"));
+  ASSERT_EQ(strip.exit_code, 0) << strip.output;
+  const testing::XmlElement s = ParseSvg(Temp("strip.svg"));
+  const auto snapshots = s.FindAll("g", "snapshot");
+  ASSERT_EQ(snapshots.size(), 5u);
+  for (const testing::XmlElement* snapshot : snapshots) {
+    EXPECT_EQ(snapshot->FindAll("circle", "cell").size(), 32u);
+  }
+  EXPECT_EQ(s.FindAll("g", "distance").size(), 1u);
+
+  const Outcome activity =
+      Animat("figure activity " + source + " -o " + Temp("activity.svg"));
+  ASSERT_EQ(activity.exit_code, 0) << activity.output;
+  const testing::XmlElement a = ParseSvg(Temp("activity.svg"));
+  ASSERT_EQ(a.FindAll("g", "panel").size(), 2u);
+  EXPECT_EQ(a.FindAll("polyline", "series").size(), 4u);
+
+  const Outcome cells = Animat("figure cells " + source +
+                               " --cells 0,5,31 -o " + Temp("cells.svg"));
+  ASSERT_EQ(cells.exit_code, 0) << cells.output;
+  const testing::XmlElement c = ParseSvg(Temp("cells.svg"));
+  ASSERT_EQ(c.FindAll("g", "panel").size(), 3u);
+  EXPECT_EQ(c.FindAll("polyline", "series").size(), 6u);
+
+  const Outcome bad_cell =
+      Animat("figure cells " + source + " --cells 32 -o " + Temp("cells.svg"));
+  EXPECT_EQ(bad_cell.exit_code, 1);
+  EXPECT_NE(bad_cell.output.find("cell 32"), std::string::npos);
+}
+
+// A store of two runs' worth of generations made by hand: real genomes (a
+// swimmer, a failure) so the contact sheet has bodies to draw.
+class StoreFiguresTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    for (const char* suffix : {"", "-wal", "-shm", ".lock"}) {
+      std::remove((Path() + suffix).c_str());
+    }
+    Result<std::unique_ptr<lineage::Store>> store =
+        lineage::Store::Open(Path());
+    ASSERT_TRUE(store.ok()) << store.status().ToString();
+    v1::RunConfig config;
+    ASSERT_TRUE(
+        ParseProto(kShortModel, ProtoFormat::kText, config.mutable_model())
+            .ok());
+    Result<int64_t> run = (*store)->CreateRun(42, config, "test");
+    ASSERT_TRUE(run.ok());
+    v1::Genome swimmer;
+    v1::Genome failure;
+    ASSERT_TRUE(ReadProtoFile(Swimmer(), &swimmer).ok());
+    ASSERT_TRUE(
+        ReadProtoFile(testing::TestData("genomes/seed-1-nonviable.json"),
+                      &failure)
+            .ok());
+    // Generations 0..4 of two members each: id 2g a swimmer, 2g + 1 a
+    // failure; generation 3 has no fitness at all.
+    for (int g = 0; g < 5; ++g) {
+      const uint64_t a = 2 * g;
+      const uint64_t b = 2 * g + 1;
+      std::vector<lineage::NewIndividual> made(2);
+      made[0].id = a;
+      made[0].generation = g;
+      made[0].operators = {"random"};
+      made[0].genome = g == 3 ? failure : swimmer;
+      made[1].id = b;
+      made[1].generation = g;
+      made[1].operators = {"random"};
+      made[1].genome = failure;
+      ASSERT_TRUE((*store)->AddGeneration(*run, g, {a, b}, made).ok());
+      std::vector<lineage::Evaluation> results(2);
+      results[0].id = a;
+      if (g == 3) {
+        results[0].result.set_status(v1::EvaluationResult::NON_VIABLE);
+      } else {
+        results[0].result.set_status(v1::EvaluationResult::OK);
+        results[0].result.set_fitness(0.1 * (g + 1));
+      }
+      results[1].id = b;
+      results[1].result.set_status(v1::EvaluationResult::NON_VIABLE);
+      ASSERT_TRUE((*store)->RecordEvaluations(*run, results).ok());
+      lineage::GenerationStats stats;
+      stats.evaluated = g == 3 ? 0 : 1;
+      stats.failed = g == 3 ? 2 : 1;
+      if (g != 3) {
+        stats.best_id = a;
+        stats.best = stats.mean = stats.median = 0.1 * (g + 1);
+      }
+      ASSERT_TRUE((*store)->CompleteGeneration(*run, g, {a, b}, stats).ok());
+    }
+  }
+  void TearDown() override {
+    for (const char* suffix : {"", "-wal", "-shm", ".lock"}) {
+      std::remove((Path() + suffix).c_str());
+    }
+  }
+  static std::string Path() { return Temp("store.db"); }
+};
+
+TEST_F(StoreFiguresTest, FitnessHasThreeSeriesPerStore) {
+  const Outcome one =
+      Animat("figure fitness --db " + Path() + " -o " + Temp("fitness.svg"));
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  const testing::XmlElement f = ParseSvg(Temp("fitness.svg"));
+  const auto series = f.FindAll("polyline", "series");
+  ASSERT_EQ(series.size(), 3u);
+  EXPECT_EQ(series[0]->Attribute("data-label"), "seed 42 best");
+  // Generation 3 has no fitness: four points of five.
+  const std::string points = series[0]->Attribute("points");
+  EXPECT_EQ(std::count(points.begin(), points.end(), ','), 4);
+
+  const Outcome two = Animat("figure fitness --db " + Path() + " --db " +
+                             Path() + " -o " + Temp("fitness2.svg"));
+  ASSERT_EQ(two.exit_code, 0) << two.output;
+  EXPECT_EQ(ParseSvg(Temp("fitness2.svg")).FindAll("polyline", "series").size(),
+            6u);
+}
+
+TEST_F(StoreFiguresTest, TheContactSheetShowsTheBestEveryNGenerations) {
+  const Outcome run = Animat("figure contact-sheet --db " + Path() +
+                             " --every 3 -o " + Temp("sheet.svg"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const testing::XmlElement sheet = ParseSvg(Temp("sheet.svg"));
+  // Generations 0 and 3, and the last (4).
+  const auto pictures = sheet.FindAll("g", "individual");
+  ASSERT_EQ(pictures.size(), 3u);
+  EXPECT_EQ(pictures[0]->FindAll("circle", "cell").size(), 32u);
+  EXPECT_EQ(pictures[0]->FindAll("polyline", "path").size(), 1u);
+  EXPECT_TRUE(pictures[1]->FindAll("circle", "cell").empty());  // None.
+  EXPECT_EQ(pictures[2]->FindAll("circle", "cell").size(), 32u);
+  EXPECT_EQ(pictures[2]->FindAll("text")[0]->text, "generation 4");
+}
+
+TEST_F(StoreFiguresTest, AnalyzeOfAStoredIndividualUsesItsRunsConfiguration) {
+  const Outcome stored = Animat("analyze --db " + Path() +
+                                " --individual 4 -o " + Temp("stored.json"));
+  ASSERT_EQ(stored.exit_code, 0) << stored.output;
+  const Outcome direct = Animat("analyze --genome " + Swimmer() + " --config " +
+                                ShortConfig() + " -o " + Temp("direct.json"));
+  ASSERT_EQ(direct.exit_code, 0) << direct.output;
+  EXPECT_EQ(*ReadFile(Temp("stored.json")), *ReadFile(Temp("direct.json")));
+  const Outcome unknown = Animat("analyze --db " + Path() + " --individual 99");
+  EXPECT_EQ(unknown.exit_code, 1);
+}
+
+}  // namespace
+}  // namespace animat
