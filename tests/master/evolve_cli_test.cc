@@ -1,0 +1,374 @@
+// The one-command tools over real stores: `animat evolve` runs, reports
+// each generation and extends a finished run; `animat lineage` answers
+// from the store (checked against SQL on it), its genomes replay to the
+// recorded bits under `animat simulate`; bad arguments get a clear error
+// and a non-zero exit.
+#include <bit>
+#include <cerrno>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <deque>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "animat/v1/evolution.pb.h"
+#include "animat/v1/genome.pb.h"
+#include "common/io/proto_file.h"
+#include "tests/master/master_harness.h"
+
+namespace animat::testing {
+namespace {
+
+std::vector<std::string> Lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// The fields of a CSV line; quoted fields may hold commas.
+std::vector<std::string> CsvFields(const std::string& line) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (char c : line) {
+    if (c == '"') {
+      quoted = !quoted;
+    } else if (c == ',' && !quoted) {
+      fields.emplace_back();
+    } else {
+      fields.back() += c;
+    }
+  }
+  return fields;
+}
+
+// "real:<bits>" of a number printed as text (%.17g round-trips), "NULL"
+// for an empty text.
+std::string RealCell(const std::string& text) {
+  if (text.empty() || text == "-") return "NULL";
+  char* end = nullptr;
+  errno = 0;
+  const double value = std::strtod(text.c_str(), &end);
+  if (errno != 0 || end == text.c_str() || *end != '\0') {
+    return "unparsable number " + text;
+  }
+  char cell[32];
+  std::snprintf(
+      cell, sizeof(cell), "real:%016llx",
+      static_cast<unsigned long long>(std::bit_cast<uint64_t>(value)));
+  return cell;
+}
+
+double CellDouble(const std::string& cell) {
+  return std::bit_cast<double>(
+      static_cast<uint64_t>(std::stoull(cell.substr(5), nullptr, 16)));
+}
+
+// "name: value" lines as a map.
+std::map<std::string, std::string> Fields(const std::string& text) {
+  std::map<std::string, std::string> fields;
+  for (const std::string& line : Lines(text)) {
+    const size_t colon = line.find(": ");
+    if (colon != std::string::npos) {
+      fields[line.substr(0, colon)] = line.substr(colon + 2);
+    }
+  }
+  return fields;
+}
+
+class EvolveCliTest : public MasterTest {
+ protected:
+  // Runs `animat args` to its end; its exit code.
+  int Animat(const std::vector<std::string>& args, std::string* out = nullptr,
+             std::string* err = nullptr) {
+    std::unique_ptr<ChildProcess> animat = StartAnimat(args);
+    if (!AwaitExit(*animat, kRunWait, "animat " + args[0])) return -1;
+    if (out != nullptr) *out = animat->standard_output();
+    if (err != nullptr) *err = animat->standard_error();
+    return animat->exit_code();
+  }
+
+  // The progress lines `animat evolve` printed for generations `first` to
+  // `generations` - 1, each as the store records the generation.
+  void ExpectProgressLines(const std::string& out, int first, int generations) {
+    const std::vector<std::string> lines = Lines(out);
+    ASSERT_EQ(lines.size(), static_cast<size_t>(generations - first)) << out;
+    for (int g = first; g < generations; ++g) {
+      const std::vector<SqlRow> rows =
+          QueryRows(db_,
+                    "SELECT best_fitness, best_id, mean_fitness,"
+                    " median_fitness, evaluated, failed FROM generations"
+                    " WHERE generation = " +
+                        std::to_string(g));
+      ASSERT_EQ(rows.size(), 1u) << "generation " << g;
+      const SqlRow& row = rows[0];
+      char expected[256];
+      std::snprintf(expected, sizeof(expected),
+                    "generation %d/%d: best %.6g (id %s), mean %.6g, median "
+                    "%.6g, %s ok, %s failed | ",
+                    g, generations, CellDouble(row[0]), row[1].c_str(),
+                    CellDouble(row[2]), CellDouble(row[3]), row[4].c_str(),
+                    row[5].c_str());
+      EXPECT_EQ(lines[g - first].rfind(expected, 0), 0u)
+          << lines[g - first] << "\nexpected it to start with " << expected;
+    }
+  }
+
+  // Runs a store of `generations` generations with `animat evolve`.
+  void Evolve(int generations) {
+    std::string out, err;
+    ASSERT_EQ(Animat({"evolve", "--config", config_, "--db", db_, "--workers",
+                      "2", "--generations", std::to_string(generations)},
+                     &out, &err),
+              0)
+        << err;
+    ExpectProgressLines(out, 0, generations);
+  }
+
+  std::string config_;
+  std::string db_;
+};
+
+TEST_F(EvolveCliTest, EvolveReportsEachGenerationAndExtendsAFinishedRun) {
+  TestRun run;
+  run.seed = 21;
+  config_ = WriteConfig("run.txtpb", run);
+  db_ = Path("evolve.db");
+  Evolve(1);
+  if (HasFatalFailure()) return;
+  Progress progress = ReadProgress(db_);
+  EXPECT_TRUE(progress.finished) << progress.ToString();
+  EXPECT_EQ(progress.complete_generations, 1);
+
+  // The same command with more generations (and no --config) extends it.
+  std::string out, err;
+  ASSERT_EQ(
+      Animat({"evolve", "--db", db_, "--workers", "2", "--generations", "3"},
+             &out, &err),
+      0)
+      << err;
+  ExpectProgressLines(out, 1, 3);
+  progress = ReadProgress(db_);
+  EXPECT_TRUE(progress.finished) << progress.ToString();
+  EXPECT_EQ(progress.complete_generations, 3);
+
+  // An extended run is the run of 3 generations made at once.
+  run.generations = 3;
+  const std::string reference_db = Path("reference.db");
+  RunToEnd(WriteConfig("three.txtpb", run), reference_db, /*workers=*/2);
+  if (HasFatalFailure()) return;
+  ExpectSameContents(ReadStoreContents(reference_db), ReadStoreContents(db_));
+}
+
+TEST_F(EvolveCliTest, LineageAnswersAsTheStoreSays) {
+  TestRun run;
+  run.seed = 6;
+  config_ = WriteConfig("run.txtpb", run);
+  db_ = Path("lineage.db");
+  Evolve(3);
+  if (HasFatalFailure()) return;
+
+  // best: the highest fitness, the lowest id among equals.
+  const SqlRow best =
+      QueryRows(db_,
+                "SELECT id, generation, fitness, operators FROM individuals"
+                " WHERE status = 'ok' ORDER BY fitness DESC, id LIMIT 1")
+
+          .at(0);
+  std::string out, err;
+  ASSERT_EQ(Animat({"lineage", "best", "--db", db_}, &out, &err), 0) << err;
+  std::map<std::string, std::string> fields = Fields(out);
+  EXPECT_EQ(fields["id"], best[0]) << out;
+  EXPECT_EQ(fields["generation"], best[1]) << out;
+  EXPECT_EQ(RealCell(fields["fitness"]), best[2]) << out;
+  EXPECT_EQ(fields["operators"], best[3]) << out;
+
+  // ancestors: every ancestor once, at its shortest distance, nearest
+  // first then by id; computed here from the parents table.
+  std::multimap<std::string, std::string> parents_of;
+  for (const SqlRow& row :
+       QueryRows(db_, "SELECT child, parent FROM parents")) {
+    parents_of.emplace(row[0], row[1]);
+  }
+  const std::string youngest =
+      QueryCell(db_, "SELECT max(id) FROM individuals");
+  for (const std::string& id : {best[0], youngest}) {
+    SCOPED_TRACE("ancestors of " + id);
+    std::map<std::string, int> distance;
+    std::deque<std::string> queue = {id};
+    std::map<std::string, int> depth = {{id, 0}};
+    while (!queue.empty()) {
+      const std::string child = queue.front();
+      queue.pop_front();
+      const auto [begin, end] = parents_of.equal_range(child);
+      for (auto it = begin; it != end; ++it) {
+        if (depth.count(it->second) == 0) {
+          depth[it->second] = depth[child] + 1;
+          distance[it->second] = depth[child] + 1;
+          queue.push_back(it->second);
+        }
+      }
+    }
+    std::set<std::pair<int, int64_t>> expected;
+    for (const auto& [ancestor, d] : distance) {
+      expected.insert({d, std::stoll(ancestor)});
+    }
+    ASSERT_EQ(Animat({"lineage", "ancestors", id, "--db", db_}, &out, &err), 0)
+        << err;
+    const std::vector<std::string> lines = Lines(out);
+    ASSERT_FALSE(lines.empty());
+    EXPECT_EQ(lines[0], "distance,id,generation,fitness,status,operators");
+    ASSERT_EQ(lines.size(), expected.size() + 1) << out;
+    size_t i = 1;
+    for (const auto& [d, ancestor] : expected) {
+      const std::vector<std::string> f = CsvFields(lines[i++]);
+      ASSERT_EQ(f.size(), 6u) << lines[i - 1];
+      EXPECT_EQ(f[0], std::to_string(d));
+      EXPECT_EQ(f[1], std::to_string(ancestor));
+      const SqlRow row =
+          QueryRows(db_,
+                    "SELECT generation, fitness, coalesce(status, ''),"
+                    " operators FROM individuals WHERE id = " +
+                        std::to_string(ancestor))
+
+              .at(0);
+      EXPECT_EQ(f[2], row[0]);
+      EXPECT_EQ(RealCell(f[3]), row[1]);
+      EXPECT_EQ(f[4], row[2]);
+      EXPECT_EQ(f[5], row[3]);
+    }
+  }
+  EXPECT_TRUE(parents_of.count(youngest) > 0)
+      << "the youngest individual, " << youngest << ", has no parents";
+
+  // genome: the stored genome, which replays under animat simulate with
+  // the run's model configuration to the recorded evaluation.
+  const std::string genome_path = Path("best.json");
+  ASSERT_EQ(
+      Animat({"lineage", "genome", best[0], "--db", db_, "-o", genome_path},
+             &out, &err),
+      0)
+      << err;
+  v1::Genome genome;
+  ASSERT_TRUE(ReadProtoFile(genome_path, &genome).ok());
+  std::string genome_hex = "blob:";
+  for (unsigned char c : genome.SerializeAsString()) {
+    static constexpr char kHex[] = "0123456789abcdef";
+    genome_hex += kHex[c >> 4];
+    genome_hex += kHex[c & 15];
+  }
+  EXPECT_EQ(
+      genome_hex,
+      QueryCell(db_, "SELECT genome FROM individuals WHERE id = " + best[0]));
+  v1::RunConfig stored;
+  ASSERT_TRUE(stored.ParseFromString([&] {
+    const std::string hex = QueryCell(db_, "SELECT hex(config) FROM runs");
+    std::string bytes;
+    for (size_t i = 0; i + 1 < hex.size(); i += 2) {
+      bytes += static_cast<char>(std::stoi(hex.substr(i, 2), nullptr, 16));
+    }
+    return bytes;
+  }()));
+  const std::string model_path = Path("model.json");
+  ASSERT_TRUE(WriteProtoFile(model_path, stored.model()).ok());
+  ASSERT_EQ(
+      Animat({"simulate", "--genome", genome_path, "--config", model_path},
+             &out, &err),
+      0)
+      << err;
+  fields = Fields(out);
+  const SqlRow recorded =
+      QueryRows(db_,
+                "SELECT status, fitness, cells, steps, state_hash FROM"
+                " individuals WHERE id = " +
+                    best[0])
+
+          .at(0);
+  EXPECT_EQ(fields["status"], recorded[0]) << out;
+  EXPECT_EQ(RealCell(fields["fitness"]), recorded[1]) << out;
+  EXPECT_EQ(fields["cells"], recorded[2]) << out;
+  EXPECT_EQ(fields["steps"], recorded[3]) << out;
+  EXPECT_EQ(fields["state_hash"], recorded[4]) << out;
+
+  // export: one row per individual in id order, with its parents in order.
+  const std::string csv = Path("phylogeny.csv");
+  ASSERT_EQ(
+      Animat({"lineage", "export", "--format", "alife", "--db", db_, "-o", csv},
+             &out, &err),
+      0)
+      << err;
+  const std::vector<std::string> rows =
+      Lines(ReadFile(csv).ok() ? *ReadFile(csv) : "");
+  const std::vector<SqlRow> individuals =
+      QueryRows(db_,
+                "SELECT id, coalesce((SELECT group_concat(parent, ',') FROM"
+                " (SELECT parent FROM parents p WHERE p.child = i.id"
+                "  ORDER BY position)), 'NONE'),"
+                " generation, fitness, coalesce(status, ''), operators"
+                " FROM individuals i ORDER BY id");
+  ASSERT_EQ(rows.size(), individuals.size() + 1);
+  EXPECT_EQ(rows[0], "id,ancestor_list,origin_time,fitness,status,operators");
+  for (size_t r = 0; r < individuals.size(); ++r) {
+    const SqlRow& row = individuals[r];
+    const std::vector<std::string> f = CsvFields(rows[r + 1]);
+    ASSERT_EQ(f.size(), 6u) << rows[r + 1];
+    EXPECT_EQ(f[0], row[0]);
+    EXPECT_EQ(f[1], "[" + row[1] + "]") << "individual " << row[0];
+    EXPECT_EQ(f[2], row[2]);
+    EXPECT_EQ(RealCell(f[3]), row[3]) << "individual " << row[0];
+    EXPECT_EQ(f[4], row[4]);
+    EXPECT_EQ(f[5], row[5]);
+  }
+}
+
+TEST_F(EvolveCliTest, BadArgumentsGetAClearErrorAndANonZeroExit) {
+  TestRun run;
+  run.seed = 40;
+  run.generations = 1;
+  config_ = WriteConfig("run.txtpb", run);
+  db_ = Path("small.db");
+  Evolve(1);
+  if (HasFatalFailure()) return;
+
+  struct Case {
+    std::vector<std::string> args;
+    std::string message;  // What the error must say.
+  };
+  const std::string missing = Path("missing.db");
+  const std::vector<Case> cases = {
+      {{"lineage", "best", "--db", missing},
+       missing + ": no such lineage store"},
+      {{"lineage", "ancestors", "99999999", "--db", db_},
+       "no individual 99999999"},
+      {{"lineage", "genome", "99999999", "--db", db_, "-o", Path("g.json")},
+       "no individual 99999999"},
+      {{"lineage", "best", "--db", db_, "--run", "7"}, "no run 7"},
+      {{"lineage", "export", "--format", "newick", "--db", db_},
+       "--format: only alife"},
+      {{"lineage", "genome", "1", "--db", db_}, "--output is required"},
+      {{"lineage", "ancestors", "x", "--db", db_}, "id"},
+      {{"evolve", "--config", Path("missing.txtpb"), "--db", Path("new.db")},
+       Path("missing.txtpb")},
+      {{"evolve", "--db", Path("empty.db")},
+       Path("empty.db") + " holds no run: --config is needed"},
+      {{"evolve", "--config", config_}, "--db is required"},
+  };
+  for (const Case& c : cases) {
+    std::string joined;
+    for (const std::string& a : c.args) joined += " " + a;
+    SCOPED_TRACE("animat" + joined);
+    std::string out, err;
+    EXPECT_NE(Animat(c.args, &out, &err), 0);
+    EXPECT_NE(err.find(c.message), std::string::npos) << err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(Path("g.json")));
+}
+
+}  // namespace
+}  // namespace animat::testing
