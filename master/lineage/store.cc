@@ -187,18 +187,21 @@ Status Store::FinishRun(int64_t run) {
   return update->Run();
 }
 
-Status Store::UpdateRunConfig(int64_t run, const v1::RunConfig& config) {
+Status Store::UpdateRunConfig(int64_t run, const v1::RunConfig& config,
+                              const std::string& build_id) {
   std::string text;
   google::protobuf::TextFormat::PrintToString(config, &text);
   Result<sql::Statement> update = db_->Cached(
       "UPDATE runs SET seed = ?, config = ?, config_text = ?,"
-      " config_hash = ?, state = 'running', ended_at = NULL WHERE run_id = ?");
+      " config_hash = ?, build_id = ?, state = 'running', ended_at = NULL"
+      " WHERE run_id = ?");
   if (!update.ok()) return update.status();
   update->Bind(1, static_cast<int64_t>(config.evolution().seed()))
       .BindBlob(2, config.SerializeAsString())
       .Bind(3, text)
       .Bind(4, Hex64(protocol::MessageHash(config)))
-      .Bind(5, run);
+      .Bind(5, build_id)
+      .Bind(6, run);
   return update->Run();
 }
 

@@ -115,9 +115,11 @@ class Store {
                             const std::string& build_id);
   Result<std::vector<RunRow>> Runs();  // Oldest first.
   Status FinishRun(int64_t run);
-  // Replaces the run's configuration (a run extended to more generations,
-  // or resumed with --force) and marks it running again.
-  Status UpdateRunConfig(int64_t run, const v1::RunConfig& config);
+  // Replaces the run's configuration and the build that evaluates it (a
+  // run extended to more generations, or resumed with --force) and marks
+  // it running again.
+  Status UpdateRunConfig(int64_t run, const v1::RunConfig& config,
+                         const std::string& build_id);
 
   // Individuals. AddIndividuals writes all of them (and their parents) in
   // one transaction. RecordEvaluations writes a batch in one transaction;

@@ -100,8 +100,10 @@ Result<std::unique_ptr<EvolutionRun>> EvolutionRun::Resume(
   if (generations) use.evolution.generations = *generations;
   if (use.evolution.generations != stored.evolution.generations ||
       problems.size() > 0) {
-    // The run's recorded configuration is what it now runs with.
-    status = store->UpdateRunConfig(row.run_id, RunSettingsToProto(use));
+    // The run's recorded configuration and build are what it now runs
+    // with (so the next resume by this build needs no --force).
+    status = store->UpdateRunConfig(row.run_id, RunSettingsToProto(use),
+                                    protocol::BuildId());
     if (!status.ok()) return status;
   }
   log("resuming run " + std::to_string(row.run_id));

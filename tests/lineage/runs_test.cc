@@ -107,7 +107,7 @@ TEST(RunsTest, UpdateRunConfigReplacesConfigAndMarksRunning) {
   ASSERT_TRUE(store->FinishRun(*run).ok());
   v1::RunConfig longer = SmallRunConfig(1);
   longer.mutable_evolution()->set_generations(40);
-  ASSERT_TRUE(store->UpdateRunConfig(*run, longer).ok());
+  ASSERT_TRUE(store->UpdateRunConfig(*run, longer, "b").ok());
 
   Result<std::vector<RunRow>> runs = store->Runs();
   ASSERT_TRUE(runs.ok());
@@ -132,7 +132,7 @@ TEST(RunsTest, UpdateRunConfigKeepsSeedColumnInStepWithConfig) {
   ASSERT_NE(store, nullptr);
   Result<int64_t> run = store->CreateRun(1, SmallRunConfig(1), "b");
   ASSERT_TRUE(run.ok());
-  ASSERT_TRUE(store->UpdateRunConfig(*run, SmallRunConfig(9)).ok());
+  ASSERT_TRUE(store->UpdateRunConfig(*run, SmallRunConfig(9), "b").ok());
   Result<std::vector<RunRow>> runs = store->Runs();
   ASSERT_TRUE(runs.ok());
   ASSERT_EQ(runs->size(), 1u);

@@ -131,6 +131,11 @@ TEST_F(ResumeChecksTest, AnotherSimulatorBuildIsRefusedUnlessForced) {
                  {"resuming anyway (--force): the run was "
                   "evaluated by build \"animat 0.0 other-build\""});
   EXPECT_EQ(StoredConfig(db_).evolution().seed(), 21u);
+  // The run goes on with this build: it is recorded, and the next resume
+  // needs no --force.
+  EXPECT_NE(QueryCell(db_, "SELECT build_id FROM runs"),
+            "animat 0.0 other-build");
+  ExpectAccepted({}, {});
 }
 
 TEST_F(ResumeChecksTest, AResumeNeedsAStoreWithARun) {
