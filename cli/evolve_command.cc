@@ -93,6 +93,11 @@ class LocalWorkers {
 };
 
 int Run(const Options& o) {
+  // A mistyped path must not leave an empty store behind.
+  if (o.config.empty() && access(o.db.c_str(), F_OK) != 0) {
+    return Fail(o.db +
+                ": no such lineage store; --config is needed to start a run");
+  }
   std::optional<RunSettings> settings;
   if (!o.config.empty()) {
     Result<RunSettings> read = ReadRunConfigFile(o.config);

@@ -14,6 +14,8 @@
 #include <iostream>
 #include <optional>
 
+#include <unistd.h>
+
 #include <google/protobuf/stubs/logging.h>
 #include <CLI/CLI.hpp>
 #include <zmq.hpp>
@@ -79,6 +81,10 @@ int main(int argc, char** argv) {
   }
   if (!resume && config_path.empty()) {
     return Fail("--config is needed to start a run (or --resume)");
+  }
+  // A mistyped path must not leave an empty store behind.
+  if (resume && access(db_path.c_str(), F_OK) != 0) {
+    return Fail(db_path + ": no such lineage store to resume");
   }
   google::protobuf::SetLogHandler(nullptr);
 

@@ -355,8 +355,9 @@ TEST_F(EvolveCliTest, BadArgumentsGetAClearErrorAndANonZeroExit) {
       {{"lineage", "ancestors", "x", "--db", db_}, "id"},
       {{"evolve", "--config", Path("missing.txtpb"), "--db", Path("new.db")},
        Path("missing.txtpb")},
-      {{"evolve", "--db", Path("empty.db")},
-       Path("empty.db") + " holds no run: --config is needed"},
+      {{"evolve", "--db", Path("new.db")},
+       Path("new.db") +
+           ": no such lineage store; --config is needed to start a run"},
       {{"evolve", "--config", config_}, "--db is required"},
   };
   for (const Case& c : cases) {
@@ -367,7 +368,10 @@ TEST_F(EvolveCliTest, BadArgumentsGetAClearErrorAndANonZeroExit) {
     EXPECT_NE(Animat(c.args, &out, &err), 0);
     EXPECT_NE(err.find(c.message), std::string::npos) << err;
   }
+  // Nothing was made on the way.
   EXPECT_FALSE(std::filesystem::exists(Path("g.json")));
+  EXPECT_FALSE(std::filesystem::exists(Path("new.db")));
+  EXPECT_FALSE(std::filesystem::exists(missing));
 }
 
 }  // namespace

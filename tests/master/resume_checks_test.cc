@@ -3,6 +3,7 @@
 // message saying which, unless --force, which then records the new
 // configuration.
 #include <csignal>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -138,14 +139,27 @@ TEST_F(ResumeChecksTest, AnotherSimulatorBuildIsRefusedUnlessForced) {
   ExpectAccepted({}, {});
 }
 
-TEST_F(ResumeChecksTest, AResumeNeedsAStoreWithARun) {
-  std::unique_ptr<ChildProcess> master = Resume(Path("empty.db"));
+TEST_F(MasterTest, AResumeNeedsAStoreThatHoldsARun) {
+  // No store: refused, and none made.
+  const std::string missing = Path("missing.db");
+  std::unique_ptr<ChildProcess> master = Resume(missing);
   ASSERT_TRUE(AwaitExit(*master, kStepWait, "a resume of nothing"));
   EXPECT_EQ(master->exit_code(), 1);
-  EXPECT_NE(
-      master->standard_error().find(
-          Path("empty.db") + ": no run to resume; start one with --config"),
-      std::string::npos)
+  EXPECT_NE(master->standard_error().find(missing +
+                                          ": no such lineage store to resume"),
+            std::string::npos)
+      << master->output();
+  EXPECT_FALSE(std::filesystem::exists(missing));
+
+  // A store without a run (an empty file becomes one).
+  const std::string empty = Path("empty.db");
+  ASSERT_TRUE(WriteFile(empty, "").ok());
+  master = Resume(empty);
+  ASSERT_TRUE(AwaitExit(*master, kStepWait, "a resume of an empty store"));
+  EXPECT_EQ(master->exit_code(), 1);
+  EXPECT_NE(master->standard_error().find(
+                empty + ": no run to resume; start one with --config"),
+            std::string::npos)
       << master->output();
 }
 
