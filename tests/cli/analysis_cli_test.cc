@@ -13,32 +13,15 @@
 #include "animat/v1/trace.pb.h"
 #include "common/io/proto_file.h"
 #include "master/lineage/store.h"
+#include "tests/cli/run_animat.h"
 #include "tests/figures/xml.h"
 #include "tests/test_util.h"
 
 namespace animat {
 namespace {
 
-struct Outcome {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr.
-};
-
-Outcome Animat(const std::string& arguments) {
-  const std::string command =
-      std::string(ANIMAT_BIN_DIR) + "/animat " + arguments + " 2>&1";
-  Outcome run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return run;
-  char buffer[4096];
-  size_t n;
-  while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0) {
-    run.output.append(buffer, n);
-  }
-  const int status = pclose(pipe);
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
+using ::animat::testing::Animat;
+using ::animat::testing::Outcome;
 
 std::string Temp(const std::string& name) {
   return ::testing::TempDir() + "/animat-analysis-" + std::to_string(getpid()) +

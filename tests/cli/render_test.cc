@@ -15,6 +15,7 @@
 #include "common/genome/genome_proto.h"
 #include "common/io/proto_file.h"
 #include "master/lineage/store.h"
+#include "tests/cli/run_animat.h"
 #include "tests/lineage/lineage_test_util.h"
 #include "tests/test_util.h"
 
@@ -24,26 +25,8 @@ namespace {
 using google::protobuf::Struct;
 using google::protobuf::Value;
 
-struct Outcome {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr.
-};
-
-Outcome Animat(const std::string& arguments) {
-  const std::string command =
-      std::string(ANIMAT_BIN_DIR) + "/animat " + arguments + " 2>&1";
-  Outcome run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return run;
-  char buffer[4096];
-  size_t n;
-  while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0) {
-    run.output.append(buffer, n);
-  }
-  const int status = pclose(pipe);
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
+using ::animat::testing::Animat;
+using ::animat::testing::Outcome;
 
 std::string Temp(const std::string& name) {
   return ::testing::TempDir() + "/animat-render-" + name;
