@@ -164,6 +164,78 @@ CREATE VIEW line_of_descent AS
   SELECT line.run_id, line.step, i.id, i.generation, i.operators, i.fitness
   FROM line JOIN individuals i ON i.run_id = line.run_id AND i.id = line.id;
 )sql",
+    // 2 -> 3: an individual's evaluation moves to a table of its own.
+    // Recording a result in individuals rewrote the whole row, genome
+    // included, and two of its indexes; an insert into a small table keyed
+    // like the individual costs a fraction of that. `individuals` becomes a
+    // view with the same columns in the same order, so queries read as
+    // before.
+    R"sql(
+DROP VIEW best;
+DROP VIEW line_of_descent;
+CREATE TABLE births (
+  run_id       INTEGER NOT NULL REFERENCES runs (run_id),
+  id           INTEGER NOT NULL,
+  generation   INTEGER NOT NULL,
+  operators    TEXT    NOT NULL,
+  genome       BLOB    NOT NULL,
+  genome_hash  TEXT    NOT NULL,
+  elements     INTEGER NOT NULL,
+  created_at   TEXT    NOT NULL,
+  PRIMARY KEY (run_id, id)
+);
+INSERT INTO births
+  SELECT run_id, id, generation, operators, genome, genome_hash, elements,
+         created_at
+  FROM individuals ORDER BY run_id, id;
+CREATE INDEX births_by_generation ON births (run_id, generation, id);
+
+CREATE TABLE evaluations (
+  run_id       INTEGER NOT NULL,
+  id           INTEGER NOT NULL,  -- of an individual in births
+  status       TEXT    NOT NULL,
+  reason       TEXT,
+  fitness      REAL,
+  cells        INTEGER,
+  steps        INTEGER,
+  wall_seconds REAL,
+  worker       TEXT,
+  state_hash   TEXT,
+  evaluated_at TEXT,
+  PRIMARY KEY (run_id, id)
+) WITHOUT ROWID;
+INSERT INTO evaluations
+  SELECT run_id, id, status, reason, fitness, cells, steps, wall_seconds,
+         worker, state_hash, evaluated_at
+  FROM individuals WHERE status IS NOT NULL ORDER BY run_id, id;
+
+DROP TABLE individuals;
+CREATE VIEW individuals AS
+  SELECT b.run_id, b.id, b.generation, b.operators, b.genome, b.genome_hash,
+         b.elements, b.created_at, e.status, e.reason, e.fitness, e.cells,
+         e.steps, e.wall_seconds, e.worker, e.state_hash, e.evaluated_at
+  FROM births b LEFT JOIN evaluations e
+    ON e.run_id = b.run_id AND e.id = b.id;
+
+CREATE VIEW best AS
+  SELECT run_id, id, generation, fitness FROM (
+    SELECT e.run_id, e.id, b.generation, e.fitness,
+           ROW_NUMBER() OVER (PARTITION BY e.run_id
+                              ORDER BY e.fitness DESC, e.id) AS place
+    FROM evaluations e JOIN births b ON b.run_id = e.run_id AND b.id = e.id
+    WHERE e.status = 'ok')
+  WHERE place = 1;
+
+CREATE VIEW line_of_descent AS
+  WITH RECURSIVE line (run_id, id, step) AS (
+    SELECT run_id, id, 0 FROM best
+    UNION ALL
+    SELECT line.run_id, p.parent, line.step + 1
+    FROM line JOIN parents p
+      ON p.run_id = line.run_id AND p.child = line.id AND p.position = 0)
+  SELECT line.run_id, line.step, i.id, i.generation, i.operators, i.fitness
+  FROM line JOIN individuals i ON i.run_id = line.run_id AND i.id = line.id;
+)sql",
 };
 
 constexpr int kKnown = static_cast<int>(std::size(kMigrations));

@@ -208,7 +208,7 @@ Status Store::UpdateRunConfig(int64_t run, const v1::RunConfig& config,
 Status Store::InsertIndividuals(int64_t run,
                                 const std::vector<NewIndividual>& batch) {
   Result<sql::Statement> individual = db_->Cached(
-      "INSERT INTO individuals (run_id, id, generation, operators, genome,"
+      "INSERT INTO births (run_id, id, generation, operators, genome,"
       " genome_hash, elements, created_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
   if (!individual.ok()) return individual.status();
   Result<sql::Statement> parent = db_->Cached(
@@ -252,30 +252,32 @@ Status Store::AddIndividuals(int64_t run,
 Status Store::RecordEvaluations(int64_t run,
                                 const std::vector<Evaluation>& batch) {
   return InTransaction(*db_, [&]() -> Status {
-    Result<sql::Statement> update = db_->Cached(
-        "UPDATE individuals SET status = ?, reason = ?, fitness = ?,"
-        " cells = ?, steps = ?, wall_seconds = ?, worker = ?,"
-        " state_hash = ?, evaluated_at = ?"
-        " WHERE run_id = ? AND id = ? AND status IS NULL");
-    if (!update.ok()) return update.status();
+    // The first evaluation of an individual is kept (OR IGNORE); one of
+    // an individual never made is not recorded (EXISTS).
+    Result<sql::Statement> insert = db_->Cached(
+        "INSERT OR IGNORE INTO evaluations (run_id, id, status, reason,"
+        " fitness, cells, steps, wall_seconds, worker, state_hash,"
+        " evaluated_at) SELECT ?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11"
+        " WHERE EXISTS (SELECT 1 FROM births WHERE run_id = ?1 AND id = ?2)");
+    if (!insert.ok()) return insert.status();
     const std::string now = UtcNow();
     for (const Evaluation& e : batch) {
       const v1::EvaluationResult& r = e.result;
       std::string status = v1::EvaluationResult::Status_Name(r.status());
       for (char& c : status) c = static_cast<char>(std::tolower(c));
-      update->Bind(1, status)
-          .Bind(2, r.reason())
-          .Bind(3, r.has_fitness() ? std::optional<double>(r.fitness())
+      insert->Bind(1, run)
+          .Bind(2, static_cast<int64_t>(e.id))
+          .Bind(3, status)
+          .Bind(4, r.reason())
+          .Bind(5, r.has_fitness() ? std::optional<double>(r.fitness())
                                    : std::nullopt)
-          .Bind(4, static_cast<int64_t>(r.cells()))
-          .Bind(5, static_cast<int64_t>(r.steps()))
-          .Bind(6, e.wall_seconds)
-          .Bind(7, e.worker)
-          .Bind(8, Hex64(r.state_hash()))
-          .Bind(9, now)
-          .Bind(10, run)
-          .Bind(11, static_cast<int64_t>(e.id));
-      Status s = update->Run();
+          .Bind(6, static_cast<int64_t>(r.cells()))
+          .Bind(7, static_cast<int64_t>(r.steps()))
+          .Bind(8, e.wall_seconds)
+          .Bind(9, e.worker)
+          .Bind(10, Hex64(r.state_hash()))
+          .Bind(11, now);
+      Status s = insert->Run();
       if (!s.ok()) return s;
     }
     return Status::Ok();
@@ -385,19 +387,18 @@ Result<std::vector<Score>> ReadScores(sql::Statement& select) {
 
 Result<std::vector<Score>> Store::ScoresOf(int64_t run, int generation) {
   Result<sql::Statement> select = db_->Cached(
-      "SELECT id, status, fitness FROM individuals"
-      " WHERE run_id = ? AND generation = ? ORDER BY id");
+      "SELECT b.id, e.status, e.fitness FROM births b LEFT JOIN evaluations e"
+      " ON e.run_id = b.run_id AND e.id = b.id"
+      " WHERE b.run_id = ? AND b.generation = ? ORDER BY b.id");
   if (!select.ok()) return select.status();
   select->Bind(1, run).Bind(2, static_cast<int64_t>(generation));
   return ReadScores(*select);
 }
 
 Result<std::vector<Score>> Store::MemberScores(int64_t run, int generation) {
-  // Ordered by m.id, not i.id: the latter leads SQLite to walk every
-  // individual of the run in key order instead of the generation's members.
   Result<sql::Statement> select = db_->Cached(
-      "SELECT i.id, i.status, i.fitness FROM members m JOIN individuals i"
-      " ON i.run_id = m.run_id AND i.id = m.id"
+      "SELECT m.id, e.status, e.fitness FROM members m LEFT JOIN evaluations e"
+      " ON e.run_id = m.run_id AND e.id = m.id"
       " WHERE m.run_id = ? AND m.generation = ? ORDER BY m.id");
   if (!select.ok()) return select.status();
   select->Bind(1, run).Bind(2, static_cast<int64_t>(generation));
@@ -407,9 +408,10 @@ Result<std::vector<Score>> Store::MemberScores(int64_t run, int generation) {
 Result<std::vector<MemberGenome>> Store::MemberGenomes(int64_t run,
                                                        int generation) {
   Result<sql::Statement> select = db_->Cached(
-      "SELECT i.id, i.fitness, i.genome FROM members m JOIN individuals i"
-      " ON i.run_id = m.run_id AND i.id = m.id"
-      " WHERE m.run_id = ? AND m.generation = ? ORDER BY i.id");
+      "SELECT m.id, e.fitness, b.genome FROM members m"
+      " JOIN births b ON b.run_id = m.run_id AND b.id = m.id"
+      " LEFT JOIN evaluations e ON e.run_id = m.run_id AND e.id = m.id"
+      " WHERE m.run_id = ? AND m.generation = ? ORDER BY m.id");
   if (!select.ok()) return select.status();
   select->Bind(1, run).Bind(2, static_cast<int64_t>(generation));
   std::vector<MemberGenome> members;
@@ -432,8 +434,9 @@ Result<std::vector<MemberGenome>> Store::MemberGenomes(int64_t run,
 
 Result<std::vector<uint64_t>> Store::Unevaluated(int64_t run) {
   Result<sql::Statement> select = db_->Cached(
-      "SELECT id FROM individuals WHERE run_id = ? AND status IS NULL"
-      " ORDER BY id");
+      "SELECT b.id FROM births b WHERE b.run_id = ?1 AND NOT EXISTS"
+      " (SELECT 1 FROM evaluations e WHERE e.run_id = ?1 AND e.id = b.id)"
+      " ORDER BY b.id");
   if (!select.ok()) return select.status();
   select->Bind(1, run);
   std::vector<uint64_t> ids;
@@ -448,7 +451,7 @@ Result<std::vector<uint64_t>> Store::Unevaluated(int64_t run) {
 
 Result<uint64_t> Store::NextId(int64_t run) {
   Result<sql::Statement> select =
-      db_->Cached("SELECT MAX(id) FROM individuals WHERE run_id = ?");
+      db_->Cached("SELECT MAX(id) FROM births WHERE run_id = ?");
   if (!select.ok()) return select.status();
   select->Bind(1, run);
   Result<bool> row = select->Step();

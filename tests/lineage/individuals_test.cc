@@ -282,10 +282,10 @@ TEST_F(IndividualsTest, RecordEvaluationsIsOneTransaction) {
           ->AddIndividuals(run_, {MakeIndividual(1, 0), MakeIndividual(2, 0),
                                   MakeIndividual(3, 0)})
           .ok());
-  // Fault injection: the update of individual 3 fails.
+  // Fault injection: recording individual 3's evaluation fails.
   ASSERT_TRUE(store_->database()
-                  .Execute("CREATE TEMP TRIGGER fail_three BEFORE UPDATE ON "
-                           "main.individuals WHEN NEW.id = 3 BEGIN SELECT "
+                  .Execute("CREATE TEMP TRIGGER fail_three BEFORE INSERT ON "
+                           "main.evaluations WHEN NEW.id = 3 BEGIN SELECT "
                            "RAISE(ABORT, 'injected failure'); END")
                   .ok());
   const Status status = store_->RecordEvaluations(

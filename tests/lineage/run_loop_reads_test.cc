@@ -67,7 +67,7 @@ TEST_F(RunLoopReadsTest, MemberGenomesFailsNamingAnUnreadableGenome) {
   ASSERT_TRUE(store_->AddGeneration(run_, 0, {0, 2}).ok());
   ASSERT_TRUE(
       store_->database()
-          .Execute("UPDATE individuals SET genome = X'ffffffff' WHERE id = 2")
+          .Execute("UPDATE births SET genome = X'ffffffff' WHERE id = 2")
           .ok());
   Result<std::vector<MemberGenome>> members = store_->MemberGenomes(run_, 0);
   ASSERT_FALSE(members.ok());

@@ -109,23 +109,24 @@ TEST(SchemaTest, NewStoreHasCurrentVersionTablesViewsAndIndexes) {
            "SELECT type, name FROM sqlite_schema WHERE name NOT LIKE "
            "'sqlite_%' ORDER BY type, name");
   const std::vector<std::vector<std::string>> expected = {
-      {"index", "individuals_by_generation"},
-      {"index", "individuals_to_evaluate"},
+      {"index", "births_by_generation"},
       {"index", "parents_by_parent"},
+      {"table", "births"},
+      {"table", "evaluations"},
       {"table", "generations"},
-      {"table", "individuals"},
       {"table", "members"},
       {"table", "parents"},
       {"table", "runs"},
       {"view", "ancestry"},
       {"view", "best"},
       {"view", "generation_statistics"},
+      {"view", "individuals"},
       {"view", "line_of_descent"},
   };
   EXPECT_EQ(objects, expected);
   // The views compile against the tables (an empty store answers them).
-  for (const char* view :
-       {"ancestry", "best", "generation_statistics", "line_of_descent"}) {
+  for (const char* view : {"ancestry", "best", "generation_statistics",
+                           "individuals", "line_of_descent"}) {
     EXPECT_EQ(Value(*store, std::string("SELECT COUNT(*) FROM ") + view), "0")
         << view;
   }
@@ -151,7 +152,7 @@ TEST(SchemaTest, EmptyFileIsMigratedFromVersionZero) {
     ASSERT_TRUE(store.ok()) << store.status().ToString();
     EXPECT_EQ(Value(**store,
                     "SELECT COUNT(*) FROM sqlite_schema WHERE type = "
-                    "'table' AND name = 'individuals'"),
+                    "'table' AND name = 'births'"),
               "1");
   }
   EXPECT_EQ(UserVersion(file.path()), kSchemaVersion);
@@ -172,77 +173,85 @@ TEST(SchemaTest, ReopeningKeepsDataAndDoesNotMigrateAgain) {
   EXPECT_EQ(Value(**store, "SELECT COUNT(*) FROM individuals"), "1");
 }
 
-// A store written by schema version 1 (individuals WITHOUT ROWID) is
-// upgraded in place: every row and column survives, the views answer, and
-// individuals is a rowid table with the generation index.
-TEST(SchemaTest, VersionOneStoreIsUpgradedKeepingEveryRow) {
-  TempStorePath file("v1");
-  const std::string columns =
-      "run_id, id, generation, operators, quote(genome), genome_hash,"
-      " elements, created_at, status, reason, quote(fitness), cells, steps,"
-      " quote(wall_seconds), worker, state_hash, evaluated_at";
-  {
-    Result<std::unique_ptr<sql::Database>> db =
-        sql::Database::Open(file.path());
-    ASSERT_TRUE(db.ok()) << db.status().ToString();
-    ASSERT_TRUE(Migrate(**db, 1).ok());
-    const Status written = (*db)->Execute(
-        "INSERT INTO runs VALUES (1, 5, x'0a00', 'text', '00000000000000ff',"
-        " 'build', '2026-01-01T00:00:00.000Z', NULL, 'running');"
-        "INSERT INTO individuals VALUES"
-        " (1, 0, 0, 'random', x'0a0b0c', '0000000000000001', 3, 't0', 'ok', '',"
-        "  0.1000000000000000055511151231257827, 32, 6600, 0.25, 'h:1',"
-        "  '00000000000000aa', 'e0'),"
-        " (1, 1, 1, 'copy', x'0a0b0d', '0000000000000002', 3, 't1', NULL,"
-        "  NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL),"
-        " (1, 2, 1, 'sign', x'0a0b0e', '0000000000000003', 3, 't2', 'ok', '',"
-        "  2.5, 32, 6600, 0.5, 'h:2', '00000000000000bb', 'e2');"
-        "INSERT INTO parents VALUES (1, 1, 0, 0), (1, 2, 0, 0);");
-    ASSERT_TRUE(written.ok()) << written.ToString();
-  }
-  std::vector<std::vector<std::string>> before;
-  {
-    Result<std::unique_ptr<sql::Database>> db =
-        sql::Database::Open(file.path(), /*read_only=*/true);
-    ASSERT_TRUE(db.ok());
-    Result<sql::Statement> select =
-        (*db)->Prepare("SELECT " + columns + " FROM individuals ORDER BY id");
-    ASSERT_TRUE(select.ok());
-    for (;;) {
-      Result<bool> row = select->Step();
-      ASSERT_TRUE(row.ok());
-      if (!*row) break;
-      std::vector<std::string> values;
-      for (int c = 0; c < 17; ++c) {
-        values.push_back(select->IsNull(c) ? "NULL" : select->Text(c));
-      }
-      before.push_back(values);
+// A store written by schema version 1 (individuals WITHOUT ROWID) or 2
+// (evaluations in the individuals table) is upgraded in place: every row
+// and column survives, read through the individuals view; the views
+// answer; births is a rowid table with the generation index and
+// evaluations a table of its own.
+TEST(SchemaTest, OlderStoresAreUpgradedKeepingEveryRow) {
+  for (const int version : {1, 2}) {
+    SCOPED_TRACE("from version " + std::to_string(version));
+    TempStorePath file("v" + std::to_string(version));
+    const std::string columns =
+        "run_id, id, generation, operators, quote(genome), genome_hash,"
+        " elements, created_at, status, reason, quote(fitness), cells, steps,"
+        " quote(wall_seconds), worker, state_hash, evaluated_at";
+    {
+      Result<std::unique_ptr<sql::Database>> db =
+          sql::Database::Open(file.path());
+      ASSERT_TRUE(db.ok()) << db.status().ToString();
+      ASSERT_TRUE(Migrate(**db, version).ok());
+      const Status written = (*db)->Execute(
+          "INSERT INTO runs VALUES (1, 5, x'0a00', 'text', '00000000000000ff',"
+          " 'build', '2026-01-01T00:00:00.000Z', NULL, 'running');"
+          "INSERT INTO individuals VALUES"
+          " (1, 0, 0, 'random', x'0a0b0c', '0000000000000001', 3, 't0', 'ok',"
+          "  '', 0.1000000000000000055511151231257827, 32, 6600, 0.25, 'h:1',"
+          "  '00000000000000aa', 'e0'),"
+          " (1, 1, 1, 'copy', x'0a0b0d', '0000000000000002', 3, 't1', NULL,"
+          "  NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL),"
+          " (1, 2, 1, 'sign', x'0a0b0e', '0000000000000003', 3, 't2', 'ok',"
+          "  '', 2.5, 32, 6600, 0.5, 'h:2', '00000000000000bb', 'e2');"
+          "INSERT INTO parents VALUES (1, 1, 0, 0), (1, 2, 0, 0);");
+      ASSERT_TRUE(written.ok()) << written.ToString();
     }
-  }
-  ASSERT_EQ(before.size(), 3u);
-  ASSERT_EQ(UserVersion(file.path()), 1);
+    std::vector<std::vector<std::string>> before;
+    {
+      Result<std::unique_ptr<sql::Database>> db =
+          sql::Database::Open(file.path(), /*read_only=*/true);
+      ASSERT_TRUE(db.ok());
+      Result<sql::Statement> select =
+          (*db)->Prepare("SELECT " + columns + " FROM individuals ORDER BY id");
+      ASSERT_TRUE(select.ok());
+      for (;;) {
+        Result<bool> row = select->Step();
+        ASSERT_TRUE(row.ok());
+        if (!*row) break;
+        std::vector<std::string> values;
+        for (int c = 0; c < 17; ++c) {
+          values.push_back(select->IsNull(c) ? "NULL" : select->Text(c));
+        }
+        before.push_back(values);
+      }
+    }
+    ASSERT_EQ(before.size(), 3u);
+    ASSERT_EQ(UserVersion(file.path()), version);
 
-  Result<std::unique_ptr<Store>> store = Store::Open(file.path());
-  ASSERT_TRUE(store.ok()) << store.status().ToString();
-  EXPECT_EQ(UserVersion(file.path()), kSchemaVersion);
-  EXPECT_EQ(
-      Rows(**store, "SELECT " + columns + " FROM individuals ORDER BY id"),
-      before);
-  EXPECT_EQ(Value(**store, "SELECT id FROM best"), "2");
-  EXPECT_EQ(Rows(**store, "SELECT step, id FROM line_of_descent ORDER BY step"),
-            (std::vector<std::vector<std::string>>{{"0", "2"}, {"1", "0"}}));
-  EXPECT_EQ(Value(**store,
-                  "SELECT sql LIKE '%WITHOUT ROWID%' FROM sqlite_schema"
-                  " WHERE name = 'individuals'"),
-            "0");
-  EXPECT_EQ(Value(**store,
-                  "SELECT COUNT(*) FROM sqlite_schema WHERE type = 'index'"
-                  " AND name IN ('individuals_by_generation',"
-                  " 'individuals_to_evaluate')"),
-            "2");
-  Result<std::vector<uint64_t>> pending = (*store)->Unevaluated(1);
-  ASSERT_TRUE(pending.ok());
-  EXPECT_EQ(*pending, std::vector<uint64_t>{1});
+    Result<std::unique_ptr<Store>> store = Store::Open(file.path());
+    ASSERT_TRUE(store.ok()) << store.status().ToString();
+    EXPECT_EQ(UserVersion(file.path()), kSchemaVersion);
+    EXPECT_EQ(
+        Rows(**store, "SELECT " + columns + " FROM individuals ORDER BY id"),
+        before);
+    EXPECT_EQ(Value(**store, "SELECT COUNT(*) FROM evaluations"), "2");
+    EXPECT_EQ(Value(**store, "SELECT id FROM best"), "2");
+    EXPECT_EQ(
+        Rows(**store, "SELECT step, id FROM line_of_descent ORDER BY step"),
+        (std::vector<std::vector<std::string>>{{"0", "2"}, {"1", "0"}}));
+    EXPECT_EQ(Rows(**store,
+                   "SELECT name, type, sql LIKE '%WITHOUT ROWID%'"
+                   " FROM sqlite_schema WHERE name IN ('births',"
+                   " 'evaluations', 'individuals', 'births_by_generation')"
+                   " ORDER BY name"),
+              (std::vector<std::vector<std::string>>{
+                  {"births", "table", "0"},
+                  {"births_by_generation", "index", "0"},
+                  {"evaluations", "table", "1"},
+                  {"individuals", "view", "0"}}));
+    Result<std::vector<uint64_t>> pending = (*store)->Unevaluated(1);
+    ASSERT_TRUE(pending.ok());
+    EXPECT_EQ(*pending, std::vector<uint64_t>{1});
+  }
 }
 
 // An individual of a realistic genome (about 1 kB) costs about its size on
