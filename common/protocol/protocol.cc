@@ -95,6 +95,7 @@ SerializedGenome SerializeGenome(const v1::Genome& genome) {
   SerializedGenome out;
   out.bytes = Deterministic(genome);
   out.hash = Fingerprint(out.bytes);
+  out.elements = genome.elements_size();
   return out;
 }
 

@@ -20,6 +20,7 @@
 #include "animat/v1/protocol.pb.h"
 #include "animat/v1/trace.pb.h"
 #include "common/base/status.h"
+#include "common/genome/genome.h"
 
 namespace animat::protocol {
 
@@ -82,8 +83,13 @@ uint64_t MessageHash(const google::protobuf::MessageLite& message);
 struct SerializedGenome {
   std::string bytes;
   uint64_t hash = 0;
+  int elements = 0;  // The genome's length.
 };
 SerializedGenome SerializeGenome(const v1::Genome& genome);
+// The same bytes, hash and length as SerializeGenome(GenomeToProto(genome)),
+// written directly without building the message (the master makes
+// thousands of genomes a second; genome_encoder.cc).
+SerializedGenome SerializeGenome(const Genome& genome);
 
 // "hello", "work", ... for log lines; "none" without a body.
 const char* BodyName(const v1::Envelope& envelope);

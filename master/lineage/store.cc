@@ -205,8 +205,8 @@ Status Store::UpdateRunConfig(int64_t run, const v1::RunConfig& config,
   return update->Run();
 }
 
-Status Store::InsertIndividuals(int64_t run,
-                                const std::vector<NewIndividual>& batch) {
+Status Store::InsertIndividual(int64_t run, const NewIndividual& n,
+                               const std::string& now) {
   Result<sql::Statement> individual = db_->Cached(
       "INSERT INTO births (run_id, id, generation, operators, genome,"
       " genome_hash, elements, created_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
@@ -215,31 +215,38 @@ Status Store::InsertIndividuals(int64_t run,
       "INSERT INTO parents (run_id, child, position, parent)"
       " VALUES (?, ?, ?, ?)");
   if (!parent.ok()) return parent.status();
+  const protocol::SerializedGenome serialized =
+      n.serialized ? protocol::SerializedGenome()
+                   : protocol::SerializeGenome(n.genome);
+  const protocol::SerializedGenome& genome =
+      n.serialized ? *n.serialized : serialized;
+  individual->Bind(1, run)
+      .Bind(2, static_cast<int64_t>(n.id))
+      .Bind(3, static_cast<int64_t>(n.generation))
+      .Bind(4, Join(n.operators))
+      .BindBlob(5, genome.bytes)
+      .Bind(6, Hex64(genome.hash))
+      .Bind(7, static_cast<int64_t>(genome.elements))
+      .Bind(8, now);
+  Status status = individual->Run();
+  if (!status.ok()) return status;
+  for (size_t k = 0; k < n.parents.size(); ++k) {
+    parent->Bind(1, run)
+        .Bind(2, static_cast<int64_t>(n.id))
+        .Bind(3, static_cast<int64_t>(k))
+        .Bind(4, static_cast<int64_t>(n.parents[k]));
+    status = parent->Run();
+    if (!status.ok()) return status;
+  }
+  return Status::Ok();
+}
+
+Status Store::InsertIndividuals(int64_t run,
+                                const std::vector<NewIndividual>& batch) {
   const std::string now = UtcNow();
   for (const NewIndividual& n : batch) {
-    const protocol::SerializedGenome serialized =
-        n.serialized ? protocol::SerializedGenome()
-                     : protocol::SerializeGenome(n.genome);
-    const protocol::SerializedGenome& genome =
-        n.serialized ? *n.serialized : serialized;
-    individual->Bind(1, run)
-        .Bind(2, static_cast<int64_t>(n.id))
-        .Bind(3, static_cast<int64_t>(n.generation))
-        .Bind(4, Join(n.operators))
-        .BindBlob(5, genome.bytes)
-        .Bind(6, Hex64(genome.hash))
-        .Bind(7, static_cast<int64_t>(n.genome.elements_size()))
-        .Bind(8, now);
-    Status status = individual->Run();
+    Status status = InsertIndividual(run, n, now);
     if (!status.ok()) return status;
-    for (size_t k = 0; k < n.parents.size(); ++k) {
-      parent->Bind(1, run)
-          .Bind(2, static_cast<int64_t>(n.id))
-          .Bind(3, static_cast<int64_t>(k))
-          .Bind(4, static_cast<int64_t>(n.parents[k]));
-      status = parent->Run();
-      if (!status.ok()) return status;
-    }
   }
   return Status::Ok();
 }
@@ -463,9 +470,21 @@ Result<uint64_t> Store::NextId(int64_t run) {
 Status Store::AddGeneration(int64_t run, int generation,
                             const std::vector<uint64_t>& members,
                             const std::vector<NewIndividual>& individuals) {
+  return AddGeneration(
+      run, generation, members, individuals.size(),
+      [&](size_t i) -> const NewIndividual& { return individuals[i]; });
+}
+
+Status Store::AddGeneration(
+    int64_t run, int generation, const std::vector<uint64_t>& members,
+    size_t count,
+    const std::function<const NewIndividual&(size_t)>& individual) {
   return InTransaction(*db_, [&]() -> Status {
-    Status status = InsertIndividuals(run, individuals);
-    if (!status.ok()) return status;
+    const std::string now = UtcNow();
+    for (size_t i = 0; i < count; ++i) {
+      Status status = InsertIndividual(run, individual(i), now);
+      if (!status.ok()) return status;
+    }
     Result<sql::Statement> insert = db_->Cached(
         "INSERT INTO generations (run_id, generation, size, created_at)"
         " VALUES (?, ?, ?, ?)");
@@ -473,8 +492,8 @@ Status Store::AddGeneration(int64_t run, int generation,
     insert->Bind(1, run)
         .Bind(2, static_cast<int64_t>(generation))
         .Bind(3, static_cast<int64_t>(members.size()))
-        .Bind(4, UtcNow());
-    status = insert->Run();
+        .Bind(4, now);
+    Status status = insert->Run();
     if (!status.ok()) return status;
     Result<sql::Statement> member = db_->Cached(
         "INSERT INTO members (run_id, generation, id) VALUES (?, ?, ?)");

@@ -13,6 +13,7 @@
 #define ANIMAT_MASTER_LINEAGE_STORE_H_
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -44,10 +45,11 @@ struct NewIndividual {
   int generation = 0;
   std::vector<uint64_t> parents;       // In order; none for random ones.
   std::vector<std::string> operators;  // E.g. {"crossover", "sign"}.
+  // The genome, as a message or as bytes: when `serialized` is set (by
+  // protocol::SerializeGenome, of the message or of the Genome it came
+  // from), the store writes those bytes, hash and length, and `genome` may
+  // be left empty.
   v1::Genome genome;
-  // protocol::SerializeGenome(genome), when the caller has it already: the
-  // store then writes these bytes and hash instead of serialising the
-  // genome again (they must be the genome's).
   std::optional<protocol::SerializedGenome> serialized;
 };
 
@@ -149,6 +151,15 @@ class Store {
   Status AddGeneration(int64_t run, int generation,
                        const std::vector<uint64_t>& members,
                        const std::vector<NewIndividual>& individuals = {});
+  // The same, with the `count` individuals given one at a time by
+  // `individual(i)`, i = 0, 1, ..., count - 1 in order, called on this
+  // thread while the transaction is open (it may wait for a producer that
+  // makes them meanwhile); the reference must stay valid until the next
+  // call.
+  Status AddGeneration(
+      int64_t run, int generation, const std::vector<uint64_t>& members,
+      size_t count,
+      const std::function<const NewIndividual&(size_t)>& individual);
   Status CompleteGeneration(int64_t run, int generation,
                             const std::vector<uint64_t>& ranked,
                             const GenerationStats& stats);
@@ -163,6 +174,8 @@ class Store {
  private:
   Store(std::unique_ptr<sql::Database> db, int lock_fd)
       : db_(std::move(db)), lock_fd_(lock_fd) {}
+  Status InsertIndividual(int64_t run, const NewIndividual& n,
+                          const std::string& now);
   Status InsertIndividuals(int64_t run,
                            const std::vector<NewIndividual>& batch);
 

@@ -1,8 +1,10 @@
 #include "master/run/evolution_run.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <thread>
 
 #include "common/base/rng.h"
 #include "common/genome/genome_proto.h"
@@ -128,6 +130,12 @@ Status EvolutionRun::Flush() {
   Status status = store_->RecordEvaluations(run_id_, unsaved_);
   if (!status.ok()) return status;
   for (const lineage::Evaluation& e : unsaved_) {
+    // The store keeps an individual's first evaluation; so does the copy.
+    if (e.id < candidates_.size() && !candidates_[e.id].evaluated) {
+      lineage::Score& c = candidates_[e.id];
+      c.evaluated = true;
+      if (e.result.has_fitness()) c.fitness = e.result.fitness();
+    }
     const uint64_t i = e.id - awaited_first_;
     if (e.id >= awaited_first_ && i < awaited_.size() && awaited_[i]) {
       awaited_[i] = false;
@@ -252,8 +260,22 @@ Status EvolutionRun::AdvanceInitial(Dispatcher* dispatcher, bool* changed) {
   *changed = false;
   const EvolutionParams& p = params();
   const size_t population = static_cast<size_t>(p.population);
-  Result<std::vector<lineage::Score>> candidates = store_->ScoresOf(run_id_, 0);
-  if (!candidates.ok()) return candidates.status();
+  if (!candidates_loaded_) {
+    Result<std::vector<lineage::Score>> stored = store_->ScoresOf(run_id_, 0);
+    if (!stored.ok()) return stored.status();
+    for (size_t i = 0; i < stored->size(); ++i) {
+      if ((*stored)[i].id != i) {
+        return Status::Internal(store_->database().path() +
+                                ": the random candidates of generation 0 are "
+                                "not numbered 0, 1, ...: individual " +
+                                std::to_string((*stored)[i].id) +
+                                " is candidate " + std::to_string(i));
+      }
+    }
+    candidates_ = std::move(stored).value();
+    candidates_loaded_ = true;
+  }
+  const std::vector<lineage::Score>* candidates = &candidates_;
   // The evaluated prefix (candidates [0, prefix) all evaluated) and the
   // accepted candidates in it, in id order.
   uint64_t prefix = 0;
@@ -287,12 +309,16 @@ Status EvolutionRun::AdvanceInitial(Dispatcher* dispatcher, bool* changed) {
       n.id = id;
       n.generation = 0;
       n.operators = {"random"};
-      n.genome = GenomeToProto(InitialCandidate(id, p));
-      n.serialized = protocol::SerializeGenome(n.genome);
+      n.serialized = protocol::SerializeGenome(InitialCandidate(id, p));
       batch.push_back(std::move(n));
     }
     Status status = store_->AddIndividuals(run_id_, batch);
     if (!status.ok()) return status;
+    for (const lineage::NewIndividual& n : batch) {
+      lineage::Score score;
+      score.id = n.id;
+      candidates_.push_back(score);
+    }
     *changed = true;
     return Submit(batch, dispatcher);
   }
@@ -302,6 +328,7 @@ Status EvolutionRun::AdvanceInitial(Dispatcher* dispatcher, bool* changed) {
     accepted.resize(population);
     Status status = store_->AddGeneration(run_id_, 0, accepted);
     if (!status.ok()) return status;
+    candidates_ = std::vector<lineage::Score>();  // No longer needed.
     log_("initial population chosen from the first " +
          std::to_string(accepted.back() + 1) + " random genomes");
     *changed = true;
@@ -417,25 +444,50 @@ Status EvolutionRun::MakeGeneration(
   const auto genome_of = [&](uint64_t id) -> const Genome& {
     return *genomes_.Find(id);
   };
-  std::vector<lineage::NewIndividual> children;
-  children.reserve(static_cast<size_t>(p.population));
-  for (uint64_t id = *next; members.size() < static_cast<size_t>(p.population);
-       ++id) {
-    Offspring offspring = MakeOffspring(id, ranked, genome_of, p);
-    lineage::NewIndividual n;
-    n.id = id;
-    n.generation = generation;
-    n.parents = std::move(offspring.parents);
-    n.operators = std::move(offspring.operators);
-    n.genome = GenomeToProto(offspring.genome);
-    n.serialized = protocol::SerializeGenome(n.genome);
-    members.push_back(id);
-    children.push_back(std::move(n));
-    next_genomes.ids.push_back(id);
-    next_genomes.genomes.push_back(std::move(offspring.genome));
-  }
-  Status status = store_->AddGeneration(run_id_, generation, members, children);
+  // The offspring take ids *next, *next + 1, ...
+  const size_t population = static_cast<size_t>(p.population);
+  const size_t count =
+      members.size() < population ? population - members.size() : 0;
+  for (size_t i = 0; i < count; ++i) members.push_back(*next + i);
+  // Each offspring is a pure function of the seed, its id and the ranked
+  // generation, so a second thread makes them, in id order, while this one
+  // writes those made so far into the store's transaction.
+  std::vector<lineage::NewIndividual> children(count);
+  std::vector<Genome> child_genomes(count);
+  std::atomic<size_t> made{0};
+  std::atomic<bool> abandon{false};
+  std::thread maker([&] {
+    for (size_t i = 0; i < count && !abandon.load(std::memory_order_relaxed);
+         ++i) {
+      const uint64_t id = *next + i;
+      Offspring offspring = MakeOffspring(id, ranked, genome_of, p);
+      lineage::NewIndividual& n = children[i];
+      n.id = id;
+      n.generation = generation;
+      n.parents = std::move(offspring.parents);
+      n.operators = std::move(offspring.operators);
+      n.serialized = protocol::SerializeGenome(offspring.genome);
+      child_genomes[i] = std::move(offspring.genome);
+      made.store(i + 1, std::memory_order_release);
+      made.notify_one();
+    }
+  });
+  Status status = store_->AddGeneration(
+      run_id_, generation, members, count,
+      [&](size_t i) -> const lineage::NewIndividual& {
+        for (size_t m = made.load(std::memory_order_acquire); m <= i;
+             m = made.load(std::memory_order_acquire)) {
+          made.wait(m, std::memory_order_acquire);
+        }
+        return children[i];
+      });
+  abandon.store(true, std::memory_order_relaxed);
+  maker.join();
   if (!status.ok()) return status;
+  for (size_t i = 0; i < count; ++i) {
+    next_genomes.ids.push_back(*next + i);
+    next_genomes.genomes.push_back(std::move(child_genomes[i]));
+  }
   genomes_ = std::move(next_genomes);
   genomes_generation_ = generation;
   awaited_first_ = *next;

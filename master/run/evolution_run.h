@@ -143,6 +143,12 @@ class EvolutionRun {
   // without reading them back; -1 when there are none.
   GenomesById genomes_;
   int genomes_generation_ = -1;
+  // Until the initial population is chosen: the scores of the random
+  // candidates made so far (ids 0, 1, ...) as committed to the store, read
+  // from it once and then kept in step by Flush and AdvanceInitial, so
+  // choosing does not read every candidate back at every commit.
+  std::vector<lineage::Score> candidates_;
+  bool candidates_loaded_ = false;
   int64_t evaluations_ = 0;
   double started_ = 0;      // Seconds, steady clock.
   double last_report_ = 0;  // When the last generation completed.
