@@ -10,6 +10,10 @@
 
 namespace animat::accuracy {
 
+bool IsEvolvedName(const std::string& name) {
+  return name.rfind("evolved-", 0) == 0;
+}
+
 Result<std::vector<Animat>> LoadAnimatSet(const std::string& dir) {
   namespace fs = std::filesystem;
   std::error_code error;
@@ -33,9 +37,22 @@ Result<std::vector<Animat>> LoadAnimatSet(const std::string& dir) {
     if (!status.ok()) return status;
     Result<Genome> genome = GenomeFromProto(message);
     if (!genome.ok()) return genome.status().WithPrefix(path.string());
-    animats.push_back({path.stem().string(), *genome});
+    const std::string name = path.stem().string();
+    animats.push_back({name, *genome, IsEvolvedName(name)});
   }
   return animats;
+}
+
+std::vector<Animat> QuickSubset(const std::vector<Animat>& animats, int random,
+                                int evolved) {
+  std::vector<Animat> subset;
+  for (const Animat& animat : animats) {
+    int& left = animat.evolved ? evolved : random;
+    if (left <= 0) continue;
+    --left;
+    subset.push_back(animat);
+  }
+  return subset;
 }
 
 }  // namespace animat::accuracy

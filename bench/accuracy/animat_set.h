@@ -1,6 +1,7 @@
 // The fixed set of animats the report measures: genome files stored in
 // bench/data/accuracy/ (see its README.md for how they were chosen), so the
-// set does not change when the random-genome code does.
+// set does not change when the random-genome or evolution code does. Files
+// named evolved-*.json hold evolved genomes; every other one a random genome.
 #ifndef ANIMAT_BENCH_ACCURACY_ANIMAT_SET_H_
 #define ANIMAT_BENCH_ACCURACY_ANIMAT_SET_H_
 
@@ -15,11 +16,21 @@ namespace animat::accuracy {
 struct Animat {
   std::string name;  // The file name without extension: "seed-01198".
   Genome genome;
+  bool evolved = false;  // IsEvolvedName(name).
 };
+
+// Whether an animat of this name is an evolved one: "evolved-..." (the
+// other files are random genomes, "seed-...").
+bool IsEvolvedName(const std::string& name);
 
 // Reads every *.json genome in `dir`, in file-name order. Fails (naming the
 // file) if one cannot be read or is invalid, or if there is none.
 Result<std::vector<Animat>> LoadAnimatSet(const std::string& dir);
+
+// The --quick subset: the first `random` random and the first `evolved`
+// evolved animats of `animats` (fewer if there are fewer), in their order.
+std::vector<Animat> QuickSubset(const std::vector<Animat>& animats, int random,
+                                int evolved);
 
 }  // namespace animat::accuracy
 

@@ -64,7 +64,8 @@ std::string Candidate::ConfigText() const {
                      " substeps: " + std::to_string(substeps) +
                      " drag_update: " + drag_update + " backend: " + backend +
                      " }";
-  if (precision == "FLOAT") text += " grn { precision: FLOAT }";
+  // Always spelled out: the default precision has changed before.
+  text += " grn { precision: " + precision + " }";
   return text;
 }
 
@@ -73,7 +74,7 @@ Candidate ReferenceCandidate() {
 }
 
 Candidate DefaultCandidate() {
-  return Make("SEMI_IMPLICIT_EULER", 1, "EXPLICIT", "DOUBLE", "NATIVE");
+  return Make("SEMI_IMPLICIT_EULER", 1, "EXPLICIT", "FLOAT", "NATIVE");
 }
 
 std::vector<Candidate> CandidateSet() {

@@ -34,14 +34,15 @@ struct Candidate {
   // Verlet", "RK4", "Bullet".
   std::string Group() const;
   // The fields it sets over the defaults, as proto text of animat.v1.Config.
-  // Precision is written only when FLOAT (DOUBLE is the default).
+  // Every field the candidate names is written, precision included, so a
+  // change of the defaults does not change the candidate.
   std::string ConfigText() const;
 };
 
 // RK4, 16 sub-steps, explicit drag, double, native.
 Candidate ReferenceCandidate();
 // The default configuration: semi-implicit Euler, 1 sub-step, explicit
-// drag, double, native.
+// drag, float network arithmetic, native ("E1f").
 Candidate DefaultCandidate();
 
 // Every native integrator x sub-steps {1, 2, 4} x drag update {explicit,

@@ -138,9 +138,12 @@ Result<Report> RunExperiment(const ExperimentOptions& options) {
   Result<std::vector<Animat>> loaded = LoadAnimatSet(options.data_dir);
   if (!loaded.ok()) return loaded.status();
   std::vector<Animat> animats = *loaded;
-  if (options.max_animats > 0 &&
-      static_cast<int>(animats.size()) > options.max_animats) {
-    animats.resize(options.max_animats);
+  if (options.max_animats > 0) {
+    if (static_cast<int>(animats.size()) > options.max_animats) {
+      animats.resize(options.max_animats);
+    }
+  } else if (options.quick) {
+    animats = QuickSubset(animats, kQuickRandom, kQuickEvolved);
   }
   Result<ModelConfig> reference_config = CandidateConfig(ReferenceCandidate());
   if (!reference_config.ok()) {
@@ -173,6 +176,7 @@ Result<Report> RunExperiment(const ExperimentOptions& options) {
       }
       reference_ms.push_back(run.seconds * 1e3);
       report.animats.push_back(animat.name);
+      report.evolved.push_back(animat.evolved);
       report.reference_fitness.push_back(run.fitness);
       reference.push_back(std::move(run));
       kept.push_back(animat);
@@ -198,12 +202,33 @@ Result<Report> RunExperiment(const ExperimentOptions& options) {
         reference_nudged.push_back(RunEvaluation(animat.genome, ref_nudged));
       }
     }
-    report.chaos.push_back(
-        Chaos(std::string("default (") + DefaultCandidate().Label() + ")", base,
-              nudged, reference));
+    // Also over the evolved animats alone when the set has both kinds.
+    std::vector<size_t> evolved;
+    for (size_t a = 0; a < animats.size(); ++a) {
+      if (animats[a].evolved) evolved.push_back(a);
+    }
+    const bool split = !evolved.empty() && evolved.size() < animats.size();
+    auto only_evolved = [&](const std::vector<Run>& runs) {
+      std::vector<Run> subset;
+      for (size_t a : evolved) subset.push_back(runs[a]);
+      return subset;
+    };
+    const std::string default_name =
+        std::string("default (") + DefaultCandidate().Label() + ")";
+    report.chaos.push_back(Chaos(default_name, base, nudged, reference));
+    if (split) {
+      report.chaos.push_back(Chaos(default_name + ", evolved only",
+                                   only_evolved(base), only_evolved(nudged),
+                                   only_evolved(reference)));
+    }
     if (!options.quick) {
       report.chaos.push_back(
           Chaos("reference (R16)", reference, reference_nudged, reference));
+      if (split) {
+        report.chaos.push_back(
+            Chaos("reference (R16), evolved only", only_evolved(reference),
+                  only_evolved(reference_nudged), only_evolved(reference)));
+      }
     }
     say(std::string("chaos: ") + std::to_string(elapsed()) + " s");
   }
@@ -257,6 +282,7 @@ Result<Report> RunExperiment(const ExperimentOptions& options) {
       const Run& run = runs[c][a];
       AnimatResult row;
       row.animat = animats[a].name;
+      row.evolved = animats[a].evolved;
       row.status = EvalStatusName(run.status);
       row.reason = run.reason;
       row.fitness = run.fitness;

@@ -11,15 +11,23 @@
 
 namespace animat::accuracy {
 
+// The --quick run's animats: the first 4 random and the first evolved one
+// by name (QuickSubset), so that CI exercises both kinds.
+inline constexpr int kQuickRandom = 4;
+inline constexpr int kQuickEvolved = 1;
+
 struct ExperimentOptions {
   std::string data_dir;  // Genome files (LoadAnimatSet).
-  // At most this many animats (the first by name); 0 for all.
+  // At most this many animats (the first by name); 0 for all, or for the
+  // quick subset when `quick`.
   int max_animats = 0;
   // Timed repetitions of the whole candidate set (at least 1). Errors come
   // from the first; the others must give the same bits.
   int repeats = 3;
-  bool quick = false;  // Recorded in the report; also skips the reference
-                       // configuration's chaos run.
+  // Recorded in the report; also skips the reference configuration's chaos
+  // run and, unless max_animats is set, keeps only the quick subset
+  // (kQuickRandom random and kQuickEvolved evolved animats).
+  bool quick = false;
   std::ostream* progress = nullptr;  // Progress lines, or null.
 };
 

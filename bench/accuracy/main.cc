@@ -33,7 +33,7 @@ int Run(const Options& o) {
   options.data_dir = o.data;
   options.quick = o.quick;
   options.repeats = o.quick ? 1 : o.repeats;
-  options.max_animats = o.animats > 0 ? o.animats : (o.quick ? 5 : 0);
+  options.max_animats = o.animats;  // 0: all, or --quick's subset.
   options.progress = &std::cerr;
   animat::Result<animat::accuracy::Report> report =
       animat::accuracy::RunExperiment(options);
@@ -79,13 +79,14 @@ int main(int argc, char** argv) {
   app.add_option("--data", o.data, "Directory of the animat set's genomes")
       ->capture_default_str();
   app.add_flag("--quick", o.quick,
-               "A smaller run for CI: 5 animats, 1 repetition, no chaos run "
-               "of the reference");
+               "A smaller run for CI: 5 animats (the first 4 random and the "
+               "first evolved), 1 repetition, no chaos run of the reference");
   app.add_option("--repeats", o.repeats, "Timed repetitions of the whole set")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
   app.add_option("--animats", o.animats,
-                 "Use only the first N animats (0: all; --quick: 5)")
+                 "Use only the first N animats by name (0: all, or "
+                 "--quick's 4 random and 1 evolved)")
       ->check(CLI::Range(0, 100000));
   try {
     app.parse(argc, argv);

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "bench/accuracy/stats.h"
 #include "bench/accuracy/svg_plot.h"
 
 namespace animat::accuracy {
@@ -50,6 +51,28 @@ int NonDeterministic(const CandidateResult& c) {
 
 bool Measured(const CandidateResult& c) { return !c.animats.empty(); }
 
+int EvolvedCount(const Report& report) {
+  int count = 0;
+  for (bool evolved : report.evolved) count += evolved ? 1 : 0;
+  return count;
+}
+
+// Median and 90th percentile of the fitness error, and the median time,
+// over the animats of one kind.
+struct KindSummary {
+  double median = 0.0, p90 = 0.0, ms = 0.0;
+};
+
+KindSummary SummariseKind(const CandidateResult& c, bool evolved) {
+  std::vector<double> errors, ms;
+  for (const AnimatResult& a : c.animats) {
+    if (a.evolved != evolved) continue;
+    errors.push_back(a.fitness_error);
+    if (a.status == "ok") ms.push_back(a.ms);
+  }
+  return {Median(errors), Percentile90(errors), Median(ms)};
+}
+
 }  // namespace
 
 std::string CsvField(const std::string& text) {
@@ -65,7 +88,7 @@ std::string CsvField(const std::string& text) {
 std::string AccuracyCsv(const Report& report) {
   std::string csv =
       "candidate,integrator,substeps,drag_update,precision,backend,animat,"
-      "status,reason,fitness,reference_fitness,fitness_error,"
+      "kind,status,reason,fitness,reference_fitness,fitness_error,"
       "trajectory_error,ms_per_evaluation,cpu_ms_per_evaluation,state_hash,"
       "deterministic\n";
   for (const CandidateResult& c : report.candidates) {
@@ -74,13 +97,14 @@ std::string AccuracyCsv(const Report& report) {
         k.Label() + "," + k.integrator + "," + std::to_string(k.substeps) +
         "," + k.drag_update + "," + k.precision + "," + k.backend + ",";
     if (!Measured(c)) {
-      csv += prefix + ",not_loaded," + CsvField(c.error) + ",,,,,,,,\n";
+      csv += prefix + ",,not_loaded," + CsvField(c.error) + ",,,,,,,,\n";
       continue;
     }
     for (const AnimatResult& a : c.animats) {
       const bool ok = a.status == "ok";
-      csv += prefix + a.animat + "," + a.status + "," + CsvField(a.reason) +
-             "," + (ok ? CsvNumber(a.fitness) : "") + "," +
+      csv += prefix + a.animat + "," + (a.evolved ? "evolved" : "random") +
+             "," + a.status + "," + CsvField(a.reason) + "," +
+             (ok ? CsvNumber(a.fitness) : "") + "," +
              CsvNumber(a.reference_fitness) + "," + CsvNumber(a.fitness_error) +
              "," + CsvNumber(a.trajectory_error) + "," + Format("%.3f", a.ms) +
              "," + Format("%.3f", a.cpu_ms) + "," +
@@ -131,9 +155,10 @@ std::string SummaryMarkdown(const Report& report) {
       "Reference: RK4, 16 sub-steps (h = dt/16), explicit drag, double, "
       "native backend; " +
       Ms(report.reference_ms_median) + " ms per evaluation (median). ";
-  md += std::to_string(report.animats.size()) +
-        " animats (random genomes; evolved animats are not in the set yet: "
-        "the genetic algorithm is a later issue). ";
+  const int evolved = EvolvedCount(report);
+  md += std::to_string(report.animats.size()) + " animats (" +
+        std::to_string(report.animats.size() - evolved) + " random genomes, " +
+        std::to_string(evolved) + " evolved: bench/data/accuracy/README.md). ";
   md += std::string("Times: median of ") + std::to_string(report.repeats) +
         " repetition(s) per evaluation, then the median over the animats; " +
         report.machine + ". The whole run took " +
@@ -215,6 +240,27 @@ std::string SummaryMarkdown(const Report& report) {
     md += "| `" + c.candidate.Label() + "` | `" + c.counterpart + "` | " +
           Error(c.counterpart_median) + " | " + Error(c.counterpart_p90) +
           " | " + Error(c.counterpart_max) + " |\n";
+  }
+
+  if (evolved > 0 && evolved < static_cast<int>(report.animats.size())) {
+    md += "\n### Random and evolved animats\n\n";
+    md +=
+        "Fitness error |f − f_ref| / f_ref and ms per evaluation (medians) "
+        "over the " +
+        std::to_string(report.animats.size() - evolved) +
+        " random genomes and over the " + std::to_string(evolved) +
+        " evolved animats apart.\n\n";
+    md +=
+        "| candidate | random: median | p90 | ms | evolved: median | p90 | "
+        "ms |\n|---|---:|---:|---:|---:|---:|---:|\n";
+    for (const CandidateResult& c : report.candidates) {
+      if (!Measured(c)) continue;
+      const KindSummary r = SummariseKind(c, false);
+      const KindSummary e = SummariseKind(c, true);
+      md += "| `" + c.candidate.Label() + "` | " + Error(r.median) + " | " +
+            Error(r.p90) + " | " + Ms(r.ms) + " | " + Error(e.median) + " | " +
+            Error(e.p90) + " | " + Ms(e.ms) + " |\n";
+    }
   }
 
   md += "\n### Chaos: runs that differ by one ulp of dt\n\n";

@@ -25,6 +25,7 @@ struct AnimatResult {
   double cpu_ms = 0.0;            // Median CPU time of the evaluating thread.
   uint64_t state_hash = 0;
   bool deterministic = true;  // Every repetition gave the same bits.
+  bool evolved = false;       // An evolved animat, not a random genome.
 };
 
 struct CandidateResult {
@@ -80,6 +81,9 @@ struct Report {
   bool quick = false;
   int repeats = 0;
   std::vector<std::string> animats;  // Names, in order.
+  // Per animat, in the same order: evolved (true) or a random genome. May
+  // be empty: then all are random.
+  std::vector<bool> evolved;
   // Animats left out because their reference evaluation failed.
   std::vector<std::string> excluded;
   std::string machine;  // CPU, cores, load average.

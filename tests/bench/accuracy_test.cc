@@ -1,5 +1,5 @@
 // The accuracy report's own logic: statistics, the Pareto front, the SVG
-// writer and the candidate set (bench/accuracy/).
+// writer, the candidate set and the animat set's kinds (bench/accuracy/).
 #include <cmath>
 #include <limits>
 #include <set>
@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "bench/accuracy/animat_set.h"
 #include "bench/accuracy/candidates.h"
 #include "bench/accuracy/report.h"
 #include "bench/accuracy/stats.h"
@@ -203,7 +204,30 @@ TEST(CandidatesTest, SetCoversEveryCombinationWithUniqueLabels) {
   for (const Candidate& c : set) labels.insert(c.Label());
   EXPECT_EQ(labels.size(), set.size());
   EXPECT_EQ(ReferenceCandidate().Label(), "R16");
-  EXPECT_EQ(DefaultCandidate().Label(), "E1");
+  EXPECT_EQ(DefaultCandidate().Label(), "E1f");
+}
+
+TEST(CandidatesTest, DefaultCandidateIsTheModelsDefaultConfig) {
+  Result<ModelConfig> config = CandidateConfig(DefaultCandidate());
+  ASSERT_TRUE(config.ok()) << config.status().message();
+  const ModelConfig defaults;
+  EXPECT_EQ(config->physics.integrator, defaults.physics.integrator);
+  EXPECT_EQ(config->physics.substeps, defaults.physics.substeps);
+  EXPECT_EQ(config->physics.drag_update, defaults.physics.drag_update);
+  EXPECT_EQ(config->physics.backend, defaults.physics.backend);
+  EXPECT_EQ(config->grn.precision, defaults.grn.precision);
+}
+
+// Regression: when the default precision became FLOAT, candidates that
+// asked for DOUBLE by writing nothing ran in float.
+TEST(CandidatesTest, EveryCandidateGetsThePrecisionItNames) {
+  for (const Candidate& c : CandidateSet()) {
+    Result<ModelConfig> config = CandidateConfig(c);
+    ASSERT_TRUE(config.ok()) << c.Label() << ": " << config.status().message();
+    EXPECT_EQ(config->grn.precision,
+              c.precision == "FLOAT" ? Precision::kFloat : Precision::kDouble)
+        << c.Label();
+  }
 }
 
 TEST(CandidatesTest, ReferenceConfigIsRk4WithSixteenSubsteps) {
@@ -213,6 +237,7 @@ TEST(CandidatesTest, ReferenceConfigIsRk4WithSixteenSubsteps) {
   EXPECT_EQ(config->physics.substeps, 16);
   EXPECT_EQ(config->physics.drag_update, DragUpdate::kExplicit);
   EXPECT_EQ(config->physics.backend, PhysicsBackend::kNative);
+  EXPECT_EQ(config->grn.precision, Precision::kDouble);
 }
 
 // The number of fields of each line of `csv` (quotes respected).
@@ -258,7 +283,7 @@ TEST(ReportTest, WritersShowAnUnloadableCandidateAsARowWithItsError) {
 
   const std::string md = SummaryMarkdown(report);
   EXPECT_NE(md.find("grn.precision: not supported"), std::string::npos);
-  EXPECT_NE(md.find("| `E1` |"), std::string::npos);
+  EXPECT_NE(md.find("| `E1f` |"), std::string::npos);
   EXPECT_NE(md.find("not run"), std::string::npos);
   const std::string csv = SummaryCsv(report);
   EXPECT_EQ(Count(csv, "\n"), 3);
@@ -274,6 +299,66 @@ TEST(ReportTest, WritersShowAnUnloadableCandidateAsARowWithItsError) {
   const std::string svg = ReportSvg(report);
   EXPECT_EQ(CheckXml(svg), "");
   EXPECT_EQ(Count(svg, "<circle class=\"point front\""), 1);
+}
+
+TEST(AnimatSetTest, EvolvedAnimatsAreTheFilesNamedEvolved) {
+  EXPECT_TRUE(IsEvolvedName("evolved-s1-g098-76194"));
+  EXPECT_FALSE(IsEvolvedName("seed-01198"));
+  EXPECT_FALSE(IsEvolvedName("my-evolved-1"));
+}
+
+std::vector<std::string> Names(const std::vector<Animat>& animats) {
+  std::vector<std::string> names;
+  for (const Animat& a : animats) names.push_back(a.name);
+  return names;
+}
+
+TEST(AnimatSetTest, QuickSubsetTakesTheFirstOfEachKindInOrder) {
+  std::vector<Animat> set;
+  for (const char* name : {"evolved-a", "evolved-b", "seed-1", "seed-2",
+                           "seed-3", "seed-4", "seed-5"}) {
+    set.push_back({name, Genome{}, IsEvolvedName(name)});
+  }
+  EXPECT_EQ(Names(QuickSubset(set, 4, 1)),
+            (std::vector<std::string>{"evolved-a", "seed-1", "seed-2", "seed-3",
+                                      "seed-4"}));
+  // Fewer of a kind than asked: all of them.
+  EXPECT_EQ(Names(QuickSubset(set, 1, 5)),
+            (std::vector<std::string>{"evolved-a", "evolved-b", "seed-1"}));
+  EXPECT_TRUE(QuickSubset(set, 0, 0).empty());
+}
+
+TEST(ReportTest, MixedSetGetsATableOfEachKindAndAKindColumn) {
+  Report report;
+  report.repeats = 1;
+  report.animats = {"seed-1", "evolved-a"};
+  report.evolved = {false, true};
+  report.reference_fitness = {1.0, 50.0};
+  CandidateResult c;
+  c.candidate = DefaultCandidate();
+  c.animats.push_back(
+      {"seed-1", "ok", "", 1.1, 1.0, 0.1, 0.1, 20.0, 20.0, 7, true, false});
+  c.animats.push_back({"evolved-a", "ok", "", 49.0, 50.0, 0.02, 0.03, 60.0,
+                       60.0, 8, true, true});
+  report.candidates = {c};
+
+  const std::string md = SummaryMarkdown(report);
+  EXPECT_NE(md.find("2 animats (1 random genomes, 1 evolved"),
+            std::string::npos);
+  EXPECT_NE(md.find("### Random and evolved animats"), std::string::npos);
+  EXPECT_NE(md.find("| `E1f` | 1.0e-01 | 1.0e-01 | 20.0 | 2.0e-02 | 2.0e-02 | "
+                    "60.0 |"),
+            std::string::npos)
+      << md;
+  const std::string csv = AccuracyCsv(report);
+  EXPECT_NE(csv.find(",seed-1,random,ok,"), std::string::npos);
+  EXPECT_NE(csv.find(",evolved-a,evolved,ok,"), std::string::npos);
+
+  // An all-random set has no such table.
+  report.evolved = {false, false};
+  report.candidates[0].animats[1].evolved = false;
+  EXPECT_EQ(SummaryMarkdown(report).find("### Random and evolved"),
+            std::string::npos);
 }
 
 }  // namespace
