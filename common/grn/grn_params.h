@@ -17,7 +17,7 @@ struct GrnParams {
   double cutoff = 3.0;        // Pairs with d >= cutoff do not bind.
   double dt = 0.05;           // Concentration update step.
   // FLOAT by default: docs/accuracy.md measures its effect on fitness at
-  // 1.5e-5 (median), thousands of times below the integration error.
+  // 8.4e-6 (median), thousands of times below the integration error.
   Precision precision = Precision::kFloat;
 };
 
