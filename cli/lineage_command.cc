@@ -1,8 +1,13 @@
 // animat lineage best|ancestors ID|genome ID -o FILE|export --format alife
 //   --db FILE [--run R]
+// animat lineage upgrade --db FILE
 //
 // Questions about a lineage store (docs/lineage.md). Read-only: it can run
-// while a master writes.
+// while a master writes. `upgrade` brings a store written by an older
+// animat to this build's schema (as a master of this build would), which
+// the questions need.
+#include <unistd.h>
+
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -13,6 +18,7 @@
 #include "cli/commands.h"
 #include "common/io/proto_file.h"
 #include "master/lineage/queries.h"
+#include "master/lineage/schema.h"
 
 namespace animat::cli {
 namespace {
@@ -97,6 +103,38 @@ int Export(const Options& o) {
   });
 }
 
+int Upgrade(const Options& o) {
+  // Store::Open would create a missing store: a mistyped path is an error.
+  if (access(o.db.c_str(), F_OK) != 0) {
+    return Fail(o.db + ": no such lineage store");
+  }
+  int before = -1;
+  {
+    Result<std::unique_ptr<sql::Database>> db =
+        sql::Database::Open(o.db, /*read_only=*/true);
+    if (!db.ok()) return Fail(db.status().message());
+    Result<sql::Statement> version = (*db)->Prepare("PRAGMA user_version");
+    if (!version.ok()) return Fail(version.status().message());
+    Result<bool> row = version->Step();
+    if (!row.ok()) return Fail(row.status().message());
+    before = static_cast<int>(version->Int(0));
+  }
+  if (before == 0) {
+    return Fail(o.db + ": not a lineage store (schema version 0)");
+  }
+  // Takes the store's lock (refused while a master runs on it) and runs
+  // the missing migrations, each in one transaction.
+  Result<std::unique_ptr<lineage::Store>> store = lineage::Store::Open(o.db);
+  if (!store.ok()) return Fail(store.status().message());
+  if (before == lineage::kSchemaVersion) {
+    std::printf("%s: already at schema version %d\n", o.db.c_str(), before);
+  } else {
+    std::printf("%s: upgraded from schema version %d to %d\n", o.db.c_str(),
+                before, lineage::kSchemaVersion);
+  }
+  return 0;
+}
+
 }  // namespace
 
 Command AddLineageCommand(CLI::App& app) {
@@ -132,7 +170,12 @@ Command AddLineageCommand(CLI::App& app) {
       ->add_option("-o,--output", o->output,
                    "Output file; - for standard output")
       ->capture_default_str();
-  return [o, best, ancestors, genome] {
+  CLI::App* upgrade = lineage->add_subcommand(
+      "upgrade",
+      "Bring a store written by an older animat to this build's schema");
+  upgrade->add_option("--db", o->db, "The lineage store")->required();
+  return [o, best, ancestors, genome, upgrade] {
+    if (upgrade->parsed()) return Upgrade(*o);
     if (best->parsed()) return Best(*o);
     if (ancestors->parsed()) return Ancestors(*o);
     if (genome->parsed()) return GenomeOf(*o);

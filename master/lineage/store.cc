@@ -121,8 +121,10 @@ Result<std::unique_ptr<Store>> Store::OpenForQueries(const std::string& path) {
     return Status::InvalidArgument(
         path + ": lineage schema version " + std::to_string(found) +
         ", this build reads version " + std::to_string(kSchemaVersion) +
-        (found < kSchemaVersion ? " (a master of this build upgrades it)"
-                                : " (written by a newer animat)"));
+        (found < kSchemaVersion
+             ? " (`animat lineage upgrade --db " + path +
+                   "` upgrades it, as does a master of this build)"
+             : std::string(" (written by a newer animat)")));
   }
   return std::unique_ptr<Store>(new Store(std::move(db).value(), -1));
 }

@@ -20,6 +20,8 @@
 #include "animat/v1/evolution.pb.h"
 #include "animat/v1/genome.pb.h"
 #include "common/io/proto_file.h"
+#include "master/lineage/schema.h"
+#include "master/lineage/sqlite.h"
 #include "tests/master/master_harness.h"
 
 namespace animat::testing {
@@ -325,6 +327,69 @@ TEST_F(EvolveCliTest, LineageAnswersAsTheStoreSays) {
     EXPECT_EQ(f[4], row[4]);
     EXPECT_EQ(f[5], row[5]);
   }
+}
+
+// A store written by schema version 2 (the same run, its rows copied into
+// a version-2 schema) is refused by the questions with a pointer to
+// `animat lineage upgrade`, which brings it to this build's schema: then it
+// holds what the original holds and answers the same.
+TEST_F(EvolveCliTest, UpgradeBringsAnOlderStoreToThisSchema) {
+  TestRun run;
+  run.seed = 23;
+  run.generations = 2;
+  config_ = WriteConfig("run.txtpb", run);
+  db_ = Path("current.db");
+  Evolve(2);
+  if (HasFatalFailure()) return;
+  const std::string old_db = Path("old.db");
+  {
+    Result<std::unique_ptr<sql::Database>> db = sql::Database::Open(old_db);
+    ASSERT_TRUE(db.ok()) << db.status().ToString();
+    ASSERT_TRUE(lineage::Migrate(**db, 2).ok());
+    const Status copied = (*db)->Execute(
+        "ATTACH DATABASE '" + db_ +
+        "' AS current;"
+        "INSERT INTO runs SELECT * FROM current.runs;"
+        "INSERT INTO individuals SELECT * FROM current.individuals;"
+        "INSERT INTO parents SELECT * FROM current.parents;"
+        "INSERT INTO generations SELECT * FROM current.generations;"
+        "INSERT INTO members SELECT * FROM current.members;"
+        "DETACH DATABASE current;");
+    ASSERT_TRUE(copied.ok()) << copied.ToString();
+  }
+  std::string out, err;
+  EXPECT_NE(Animat({"lineage", "best", "--db", old_db}, &out, &err), 0);
+  EXPECT_NE(err.find("schema version 2"), std::string::npos) << err;
+  EXPECT_NE(err.find("animat lineage upgrade --db " + old_db),
+            std::string::npos)
+      << err;
+
+  ASSERT_EQ(Animat({"lineage", "upgrade", "--db", old_db}, &out, &err), 0)
+      << err;
+  EXPECT_EQ(out, old_db + ": upgraded from schema version 2 to " +
+                     std::to_string(lineage::kSchemaVersion) + "\n");
+  for (const char* table :
+       {"runs", "individuals", "parents", "generations", "members"}) {
+    const std::string query =
+        std::string("SELECT * FROM ") + table + " ORDER BY 1, 2, 3";
+    EXPECT_EQ(QueryRows(old_db, query), QueryRows(db_, query)) << table;
+  }
+  std::string best_old, best_current;
+  ASSERT_EQ(Animat({"lineage", "best", "--db", old_db}, &best_old, &err), 0)
+      << err;
+  ASSERT_EQ(Animat({"lineage", "best", "--db", db_}, &best_current, &err), 0)
+      << err;
+  EXPECT_EQ(best_old, best_current);
+
+  ASSERT_EQ(Animat({"lineage", "upgrade", "--db", old_db}, &out, &err), 0)
+      << err;
+  EXPECT_EQ(out, old_db + ": already at schema version " +
+                     std::to_string(lineage::kSchemaVersion) + "\n");
+  const std::string missing = Path("missing.db");
+  EXPECT_NE(Animat({"lineage", "upgrade", "--db", missing}, &out, &err), 0);
+  EXPECT_NE(err.find(missing + ": no such lineage store"), std::string::npos)
+      << err;
+  EXPECT_FALSE(std::filesystem::exists(missing));
 }
 
 TEST_F(EvolveCliTest, BadArgumentsGetAClearErrorAndANonZeroExit) {
