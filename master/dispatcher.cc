@@ -250,8 +250,26 @@ void Dispatcher::Greet(const std::string& identity, const v1::Hello& hello,
     // A second hello on one connection: start the session afresh.
     DropWorker(identity, /*died=*/false, nullptr);
   }
+  if (hello.instance() != 0) {
+    // The same worker process on a new connection: it took the master for
+    // lost (a master busy for longer than the workers' liveness), so its
+    // old session is over, through no fault of the work it held.
+    std::vector<std::string> replaced;
+    for (const auto& [other, state] : workers_) {
+      if (state.instance == hello.instance() && state.name == name) {
+        replaced.push_back(other);
+      }
+    }
+    for (const std::string& other : replaced) {
+      options_.log("worker " + name + " reconnected; " +
+                   std::to_string(workers_.at(other).leased.size()) +
+                   " leases of its old session back in the queue");
+      DropWorker(other, /*died=*/false, nullptr);
+    }
+  }
   WorkerState& worker = workers_[identity];
   worker.name = name;
+  worker.instance = hello.instance();
   worker.threads = static_cast<int>(
       std::clamp<uint32_t>(hello.threads(), 1, protocol::kMaxThreads));
   worker.null_evaluation = hello.null_evaluation();

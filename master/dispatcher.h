@@ -113,7 +113,8 @@ class Dispatcher {
   using Clock = std::chrono::steady_clock;
 
   struct WorkerState {
-    std::string name;  // host:pid
+    std::string name;       // host:pid
+    uint64_t instance = 0;  // Hello.instance; 0 when none was given.
     int threads = 1;
     int credit = 0;
     bool null_evaluation = false;

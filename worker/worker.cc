@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <random>
 #include <thread>
 #include <zmq.hpp>
 
@@ -27,6 +28,10 @@ int64_t MillisSince(Clock::time_point t) {
 Worker::Worker(WorkerOptions options) : options_(std::move(options)) {
   char name[256] = {};
   if (gethostname(name, sizeof(name) - 1) == 0) host_ = name;
+  std::random_device device;
+  while (instance_ == 0) {
+    instance_ = uint64_t{device()} << 32 | device();
+  }
 }
 
 Worker::~Worker() = default;
@@ -99,6 +104,7 @@ Worker::SessionEnd Worker::RunSession(zmq::context_t& context) {
     h->set_host(host_);
     h->set_pid(static_cast<uint64_t>(getpid()));
     h->set_null_evaluation(options_.null_evaluation);
+    h->set_instance(instance_);
     send(hello);
   }
 

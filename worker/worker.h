@@ -72,6 +72,10 @@ class Worker {
 
   WorkerOptions options_;
   std::string host_;
+  // Hello.instance: random, fixed for the life of this object, so the
+  // master knows a reconnection from a new worker. Not a draw that reaches
+  // results.
+  uint64_t instance_ = 0;
   std::atomic<bool> stop_{false};
   // Survives sessions, so evaluations under way when a master vanished
   // finish and are offered to the next one.

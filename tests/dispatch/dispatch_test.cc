@@ -299,6 +299,64 @@ TEST_F(DispatchTest, IndividualWhoseLeaseExpiresThreeTimesIsGivenUp) {
   EXPECT_EQ(log_.Count({"fake-worker:4444 silent"}), 0);
 }
 
+// A worker process that took its master for lost (a master busy for longer
+// than the liveness) reconnects on a new connection with the Hello.instance
+// of its first: its old session ends at once, and the work it held goes
+// back without an attempt counted, however often it happens. Another
+// process that happens to share host:pid (a different instance) is a
+// different worker.
+TEST_F(DispatchTest, WorkerReconnectingUnderItsInstanceCostsNoAttempt) {
+  const Individual held = Population({DataGenome("seed-139")}, 1400)[0];
+  ASSERT_TRUE(StartDispatcher(Options()));
+  Submit({held});
+  constexpr uint64_t kInstance = 0x5eed5eed5eed5eedull;
+  std::vector<std::unique_ptr<FakeWorker>> sessions;
+  for (int session = 1; session <= protocol::kMaxAttempts + 2; ++session) {
+    SCOPED_TRACE("session " + std::to_string(session));
+    sessions.push_back(
+        std::make_unique<FakeWorker>(context_, dispatcher_->endpoint()));
+    FakeWorker& fake = *sessions.back();
+    auto pump = [&] { fake.Pump(); };
+    fake.Hello(1, 4444, kInstance);
+    ASSERT_TRUE(Serve([&] { return fake.welcomed(); }, kShortWait, pump));
+    if (session > 1) {
+      EXPECT_EQ(log_.Count({"worker fake-worker:4444 reconnected; 1 leases "
+                            "of its old session back in the queue"}),
+                session - 1);
+    }
+    fake.Credit(1);
+    ASSERT_TRUE(
+        Serve([&] { return fake.work_items().size() == 1; }, kShortWait, pump));
+    EXPECT_EQ(fake.work_items()[0].individual(), held.id);
+    EXPECT_EQ(dispatcher_->workers(), 1u);
+  }
+  EXPECT_EQ(CompletionsOf(held.id), 0) << log_.Dump();
+  EXPECT_EQ(dispatcher_->stats().gave_up, 0);
+
+  // Another process under the same host:pid does not replace it.
+  FakeWorker& current = *sessions.back();
+  FakeWorker other(context_, dispatcher_->endpoint());
+  auto pump_both = [&] {
+    current.Pump();
+    other.Pump();
+  };
+  other.Hello(1, 4444, kInstance + 1);
+  ASSERT_TRUE(Serve([&] { return other.welcomed(); }, kShortWait, pump_both));
+  EXPECT_EQ(dispatcher_->workers(), 2u);
+  // The held individual completes with its result, as evaluated directly.
+  v1::Envelope results;
+  v1::WorkResult* r = results.mutable_results()->add_results();
+  r->set_individual(held.id);
+  r->set_genome_hash(current.work_items()[0].genome_hash());
+  *r->mutable_result() = held.expected;
+  current.Send(results);
+  ASSERT_TRUE(Serve([&] { return CompletionsOf(held.id) == 1; }, kShortWait,
+                    pump_both));
+  ExpectSameResult(completions_[0].result, held.expected, held.id);
+  EXPECT_EQ(completions_[0].attempts, 0);
+  EXPECT_EQ(log_.Count({"silent"}), 0) << log_.Dump();
+}
+
 // Regression: a
 // suspect is sent alone in its Work message, but other individuals may be
 // leased to the same worker at the same time (Dispatch only breaks the

@@ -25,7 +25,9 @@ namespace animat::testing {
 
 // A hello as a real worker of this build sends it (a made-up host, so the
 // dispatcher's name for it is "fake-worker:<pid>").
-inline v1::Envelope FakeHello(int threads, uint64_t pid) {
+// `instance`: Hello.instance (0: none, as before it existed).
+inline v1::Envelope FakeHello(int threads, uint64_t pid,
+                              uint64_t instance = 0) {
   v1::Envelope envelope;
   v1::Hello* hello = envelope.mutable_hello();
   hello->set_protocol_version(protocol::kVersion);
@@ -33,6 +35,7 @@ inline v1::Envelope FakeHello(int threads, uint64_t pid) {
   hello->set_threads(static_cast<uint32_t>(threads));
   hello->set_host("fake-worker");
   hello->set_pid(pid);
+  hello->set_instance(instance);
   return envelope;
 }
 
@@ -68,7 +71,9 @@ class FakeWorker {
   }
 
   // Says hello as "fake-worker:<pid>" with `threads` threads.
-  void Hello(int threads, uint64_t pid) { Send(FakeHello(threads, pid)); }
+  void Hello(int threads, uint64_t pid, uint64_t instance = 0) {
+    Send(FakeHello(threads, pid, instance));
+  }
   void Credit(uint32_t credit) {
     v1::Envelope envelope;
     envelope.mutable_credit()->set_credit(credit);
