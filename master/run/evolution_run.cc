@@ -23,6 +23,8 @@ double SteadySeconds() {
 // reads them back).
 constexpr double kFlushSeconds = 0.2;
 constexpr size_t kFlushCount = 5000;
+// While making a generation, workers are served at least this often.
+constexpr double kServeSeconds = 0.01;
 
 std::vector<Scored> ToScored(const std::vector<lineage::Score>& scores) {
   std::vector<Scored> scored;
@@ -165,28 +167,7 @@ Status EvolutionRun::Run(
   Status status = Advance(dispatcher, progress);
   double last_flush = SteadySeconds();
   while (status.ok() && !finished_ && !stop.load()) {
-    for (Completion& c : dispatcher->Poll(100)) {
-      if (c.null_evaluation) {
-        if (!score_null_evaluations_) {
-          status = Status::Internal(
-              "a null-evaluation worker's result for individual " +
-              std::to_string(c.individual) +
-              " reached a run that does not score them; not recorded");
-          break;
-        }
-        c.result.Clear();
-        c.result.set_status(v1::EvaluationResult::OK);
-        c.result.set_fitness(
-            NullEvaluationFitness(params().seed, c.individual));
-      }
-      lineage::Evaluation e;
-      e.id = c.individual;
-      e.result = std::move(c.result);
-      e.wall_seconds = c.wall_seconds;
-      e.worker = std::move(c.worker);
-      unsaved_.push_back(std::move(e));
-      ++evaluations_;
-    }
+    status = Serve(dispatcher, 100);
     if (!status.ok()) break;
     const double now = SteadySeconds();
     if (!unsaved_.empty() &&
@@ -203,6 +184,36 @@ Status EvolutionRun::Run(
   }
   Status flushed = Flush();
   return status.ok() ? flushed : status;
+}
+
+Status EvolutionRun::Serve(Dispatcher* dispatcher, int timeout_ms) {
+  Status status;
+  for (Completion& c : dispatcher->Poll(timeout_ms)) {
+    if (c.null_evaluation) {
+      if (!score_null_evaluations_) {
+        // Reported once; the rest of the batch is still recorded.
+        if (status.ok()) {
+          status = Status::Internal(
+              "a null-evaluation worker's result for individual " +
+              std::to_string(c.individual) +
+              " reached a run that does not score them; not recorded");
+        }
+        continue;
+      }
+      c.result.Clear();
+      c.result.set_status(v1::EvaluationResult::OK);
+      c.result.set_fitness(NullEvaluationFitness(params().seed, c.individual));
+    }
+    lineage::Evaluation e;
+    e.id = c.individual;
+    e.result = std::move(c.result);
+    e.wall_seconds = c.wall_seconds;
+    e.worker = std::move(c.worker);
+    unsaved_.push_back(std::move(e));
+    ++evaluations_;
+  }
+  last_served_ = SteadySeconds();
+  return status;
 }
 
 Status EvolutionRun::Advance(
@@ -472,9 +483,16 @@ Status EvolutionRun::MakeGeneration(
       made.notify_one();
     }
   });
+  // Workers are served meanwhile (heartbeats, results of work already
+  // out), so a large generation does not look like a lost master.
+  Status served;
   Status status = store_->AddGeneration(
       run_id_, generation, members, count,
       [&](size_t i) -> const lineage::NewIndividual& {
+        if (i % 64 == 0 && served.ok() &&
+            SteadySeconds() - last_served_ >= kServeSeconds) {
+          served = Serve(dispatcher, 0);
+        }
         for (size_t m = made.load(std::memory_order_acquire); m <= i;
              m = made.load(std::memory_order_acquire)) {
           made.wait(m, std::memory_order_acquire);
@@ -484,6 +502,7 @@ Status EvolutionRun::MakeGeneration(
   abandon.store(true, std::memory_order_relaxed);
   maker.join();
   if (!status.ok()) return status;
+  if (!served.ok()) return served;
   for (size_t i = 0; i < count; ++i) {
     next_genomes.ids.push_back(*next + i);
     next_genomes.genomes.push_back(std::move(child_genomes[i]));

@@ -115,6 +115,10 @@ class EvolutionRun {
                         Dispatcher* dispatcher);
   Status Submit(const std::vector<lineage::NewIndividual>& made,
                 Dispatcher* dispatcher);
+  // Polls `dispatcher` for up to `timeout_ms` and keeps the results for
+  // the next Flush. Fails on a null-evaluation result the run does not
+  // score (the other results are kept).
+  Status Serve(Dispatcher* dispatcher, int timeout_ms);
   Status Flush();
 
   lineage::Store* store_;
@@ -151,6 +155,7 @@ class EvolutionRun {
   bool candidates_loaded_ = false;
   int64_t evaluations_ = 0;
   double started_ = 0;      // Seconds, steady clock.
+  double last_served_ = 0;  // When Serve last polled the dispatcher.
   double last_report_ = 0;  // When the last generation completed.
   int64_t evaluations_at_last_report_ = 0;
 };
