@@ -32,6 +32,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "bench/timing.h"
 #include "bench/worker_processes.h"
 #include "common/evaluation/model_config.h"
 #include "common/genome/genome_proto.h"
@@ -42,20 +43,9 @@
 namespace animat {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// User + system CPU seconds of this process, or of its waited-for children.
-double CpuSeconds(int who) {
-  rusage usage = {};
-  getrusage(who, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(usage.ru_utime.tv_usec +
-                                    usage.ru_stime.tv_usec);
-}
+using bench::Clock;
+using bench::CpuSeconds;
+using bench::SecondsSince;
 
 struct Options {
   std::string part = "both";

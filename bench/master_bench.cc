@@ -43,6 +43,7 @@
 #include <google/protobuf/stubs/logging.h>
 #include <CLI/CLI.hpp>
 
+#include "bench/timing.h"
 #include "bench/worker_processes.h"
 #include "master/dispatcher.h"
 #include "master/lineage/store.h"
@@ -51,20 +52,9 @@
 namespace animat {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// User + system CPU seconds of this process, or of its waited-for children.
-double CpuSeconds(int who) {
-  rusage usage = {};
-  getrusage(who, &usage);
-  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(usage.ru_utime.tv_usec +
-                                    usage.ru_stime.tv_usec);
-}
+using bench::Clock;
+using bench::CpuSeconds;
+using bench::SecondsSince;
 
 struct Options {
   int population = 5000;

@@ -11,18 +11,11 @@
 #include <cstdio>
 #include <cstring>
 
+#include "bench/timing.h"
+
 extern char** environ;
 
 namespace animat::bench {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double SecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-}  // namespace
 
 WorkerProcesses::WorkerProcesses(std::string binary, std::string log,
                                  Dispatcher* dispatcher)
