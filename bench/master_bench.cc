@@ -250,6 +250,7 @@ int Bench(const Options& options) {
   DispatcherOptions dispatcher_options;
   dispatcher_options.endpoint = options.endpoint;
   dispatcher_options.accept_null_workers = true;
+  dispatcher_options.acknowledge_on_receipt = false;  // As animat-master.
   dispatcher_options.heartbeat_ms = options.heartbeat_ms;
   dispatcher_options.log =
       options.verbose ? Prefixed("dispatcher", StderrSink) : quiet;

@@ -130,6 +130,8 @@ int Run(const Options& o) {
   DispatcherOptions options;
   options.endpoint = "tcp://127.0.0.1:*";
   options.log = [](std::string_view) {};  // Joins and leaves are routine.
+  // Workers keep each result until the run has committed it.
+  options.acknowledge_on_receipt = false;
   Result<std::unique_ptr<Dispatcher>> dispatcher =
       Dispatcher::Create(&context, options, (*run)->model_config());
   if (!dispatcher.ok()) return Fail(dispatcher.status().message());

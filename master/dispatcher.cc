@@ -290,18 +290,30 @@ void Dispatcher::Greet(const std::string& identity, const v1::Hello& hello,
 void Dispatcher::Collect(const std::string& identity, WorkerState& worker,
                          const v1::Results& results,
                          std::vector<Completion>* done) {
-  (void)identity;
+  // What the worker may forget now: results of no use here, and with
+  // acknowledge_on_receipt, the completions.
+  v1::Envelope acknowledge;
+  v1::Acknowledge* forget = acknowledge.mutable_acknowledge();
   for (const v1::WorkResult& r : results.results()) {
     const auto it = pending_.find(r.individual());
     if (it == pending_.end()) {
+      const auto delivered = delivered_.find(r.individual());
+      if (delivered != delivered_.end()) {
+        // Completed here and not yet recorded, sent again by a worker
+        // that reconnected: that connection is told once it is recorded.
+        delivered->second = identity;
+        continue;
+      }
       Ignore("a result for individual " + std::to_string(r.individual()) +
              " from " + worker.name + " (unknown or already complete)");
+      forget->add_individuals(r.individual());
       continue;
     }
     Individual& entry = it->second;
     if (r.genome_hash() != entry.genome_hash) {
       Ignore("a result for individual " + std::to_string(r.individual()) +
              " from " + worker.name + " for another genome");
+      forget->add_individuals(r.individual());
       continue;
     }
     Status valid = protocol::ValidateResult(r.result());
@@ -314,6 +326,7 @@ void Dispatcher::Collect(const std::string& identity, WorkerState& worker,
       Ignore("an invalid result for individual " +
              std::to_string(r.individual()) + " from " + worker.name + ": " +
              valid.message());
+      forget->add_individuals(r.individual());
       continue;
     }
     if (entry.leased) {
@@ -331,6 +344,28 @@ void Dispatcher::Collect(const std::string& identity, WorkerState& worker,
     done->push_back(std::move(completion));
     pending_.erase(it);
     ++stats_.completed;
+    if (options_.acknowledge_on_receipt) {
+      forget->add_individuals(r.individual());
+    } else {
+      delivered_[r.individual()] = identity;
+    }
+  }
+  if (forget->individuals_size() > 0) Send(identity, std::move(acknowledge));
+}
+
+void Dispatcher::Acknowledge(const std::vector<uint64_t>& individuals) {
+  // One message per worker, in identity order.
+  std::map<std::string, v1::Envelope> messages;
+  for (uint64_t id : individuals) {
+    const auto it = delivered_.find(id);
+    if (it == delivered_.end()) continue;
+    if (workers_.count(it->second) != 0) {
+      messages[it->second].mutable_acknowledge()->add_individuals(id);
+    }
+    delivered_.erase(it);
+  }
+  for (auto& [identity, envelope] : messages) {
+    Send(identity, std::move(envelope));
   }
 }
 

@@ -57,6 +57,11 @@ struct DispatcherOptions {
   std::map<std::string, std::string> curve_allowed;
   // Bind beyond loopback without CurveZMQ (trusted networks only; warns).
   bool insecure = false;
+  // Results are acknowledged to their worker (which then forgets them) as
+  // they arrive. A master that records results sets this to false and
+  // calls Acknowledge once they are committed: a worker then sends a
+  // result again to the next master if this one dies before that.
+  bool acknowledge_on_receipt = true;
   LogSink log = Prefixed("dispatcher", StderrSink);
 };
 
@@ -99,6 +104,13 @@ class Dispatcher {
   // Serves workers for up to `timeout_ms` and returns the completions that
   // came in, as soon as there are some.
   std::vector<Completion> Poll(int timeout_ms);
+
+  // Tells the workers that delivered these completions' results that they
+  // may forget them (with acknowledge_on_receipt off; otherwise, and for
+  // individuals not completed here or already acknowledged, nothing). A
+  // worker that has gone since is not told; it sends the result again to
+  // the next master, which ignores it once recorded.
+  void Acknowledge(const std::vector<uint64_t>& individuals);
 
   // Individuals submitted and not completed.
   size_t pending() const { return pending_.size(); }
@@ -192,6 +204,9 @@ class Dispatcher {
   std::deque<LeaseRecord> lease_order_;
   uint64_t leases_made_ = 0;
   std::map<std::string, WorkerState> workers_;
+  // Completions not yet acknowledged (acknowledge_on_receipt off): the
+  // identity that delivered each one's result.
+  std::map<uint64_t, std::string> delivered_;
   std::set<std::string> strangers_;  // Unknown identities already logged.
   DispatcherStats stats_;
 };

@@ -93,6 +93,8 @@ int main(int argc, char** argv) {
   options.endpoint = bind;
   options.heartbeat_ms = heartbeat_ms;
   options.insecure = insecure;
+  // Workers keep each result until the run has committed it.
+  options.acknowledge_on_receipt = false;
   if (!curve_secret_file.empty()) {
     animat::Result<animat::security::CurveKeyPair> pair =
         animat::security::ReadKeyPair(curve_secret_file);

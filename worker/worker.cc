@@ -23,6 +23,9 @@ int64_t MillisSince(Clock::time_point t) {
       .count();
 }
 
+// Results kept for a next master at most (a few hundred bytes each).
+constexpr size_t kMaxUnacknowledged = 100000;
+
 }  // namespace
 
 Worker::Worker(WorkerOptions options) : options_(std::move(options)) {
@@ -77,6 +80,7 @@ Worker::SessionEnd Worker::RunSession(zmq::context_t& context) {
   bool stopping = false;
   std::vector<uint64_t> returned;
   int uncredited = 0;  // Results finished before this session's welcome.
+  bool warned_unacknowledged = false;
 
   auto send = [&](const v1::Envelope& envelope) {
     const std::string bytes = protocol::Encode(envelope);
@@ -193,6 +197,23 @@ Worker::SessionEnd Worker::RunSession(zmq::context_t& context) {
             send_credit(options_.threads * protocol::kPrefetch -
                         pool_->in_flight());
             uncredited = static_cast<int>(unsent_.size());
+            if (!unacknowledged_.empty()) {
+              // The last master may have died before recording them; this
+              // one takes those it still needs (they earn no credit: they
+              // were counted in the session that ran them).
+              options_.log("sending again " +
+                           std::to_string(unacknowledged_.size()) +
+                           " results not acknowledged by the last master");
+              v1::Envelope results;
+              for (const auto& [id, result] : unacknowledged_) {
+                *results.mutable_results()->add_results() = result;
+                if (results.results().results_size() == protocol::kMaxBatch) {
+                  send(results);
+                  results.mutable_results()->clear_results();
+                }
+              }
+              if (results.results().results_size() > 0) send(results);
+            }
             break;
           }
           case v1::Envelope::kRefuse:
@@ -218,6 +239,11 @@ Worker::SessionEnd Worker::RunSession(zmq::context_t& context) {
           }
           case v1::Envelope::kHeartbeat:
             break;
+          case v1::Envelope::kAcknowledge:
+            for (uint64_t id : envelope.acknowledge().individuals()) {
+              unacknowledged_.erase(id);
+            }
+            break;
           default:
             options_.log(std::string("ignored an unexpected ") +
                          protocol::BodyName(envelope) + " from the master");
@@ -240,6 +266,14 @@ Worker::SessionEnd Worker::RunSession(zmq::context_t& context) {
         v1::Envelope results;
         const size_t end = std::min(done.size(), begin + protocol::kMaxBatch);
         for (size_t i = begin; i < end; ++i) {
+          if (unacknowledged_.size() < kMaxUnacknowledged) {
+            unacknowledged_[done[i].individual()] = done[i];
+          } else if (!warned_unacknowledged) {
+            warned_unacknowledged = true;
+            options_.log("the master has not acknowledged " +
+                         std::to_string(kMaxUnacknowledged) +
+                         " results; no more are kept for a next master");
+          }
           *results.mutable_results()->add_results() = std::move(done[i]);
         }
         send(results);

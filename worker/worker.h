@@ -9,6 +9,7 @@
 #define ANIMAT_WORKER_WORKER_H_
 
 #include <atomic>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -83,6 +84,12 @@ class Worker {
   uint64_t pool_config_hash_ = 0;
   // Finished results not yet sent (waiting for a welcome).
   std::vector<v1::WorkResult> unsent_;
+  // Results sent and not yet acknowledged by the master, by individual:
+  // sent again to the next master that welcomes this worker, so none is
+  // lost when a master dies before recording it. At most
+  // kMaxUnacknowledged (a master that never acknowledges is not followed
+  // further; logged).
+  std::map<uint64_t, v1::WorkResult> unacknowledged_;
 };
 
 }  // namespace animat

@@ -117,6 +117,8 @@ const char* BodyName(const v1::Envelope& envelope) {
       return "heartbeat";
     case v1::Envelope::kGoodbye:
       return "goodbye";
+    case v1::Envelope::kAcknowledge:
+      return "acknowledge";
     case v1::Envelope::BODY_NOT_SET:
       return "none";
   }

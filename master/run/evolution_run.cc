@@ -127,10 +127,15 @@ Status EvolutionRun::Submit(const std::vector<lineage::NewIndividual>& made,
   return Status::Ok();
 }
 
-Status EvolutionRun::Flush() {
+Status EvolutionRun::Flush(Dispatcher* dispatcher) {
   if (unsaved_.empty()) return Status::Ok();
   Status status = store_->RecordEvaluations(run_id_, unsaved_);
   if (!status.ok()) return status;
+  // Recorded: their workers may forget them.
+  std::vector<uint64_t> recorded;
+  recorded.reserve(unsaved_.size());
+  for (const lineage::Evaluation& e : unsaved_) recorded.push_back(e.id);
+  dispatcher->Acknowledge(recorded);
   for (const lineage::Evaluation& e : unsaved_) {
     // The store keeps an individual's first evaluation; so does the copy.
     if (e.id < candidates_.size() && !candidates_[e.id].evaluated) {
@@ -173,7 +178,7 @@ Status EvolutionRun::Run(
     if (!unsaved_.empty() &&
         (now - last_flush >= kFlushSeconds || unsaved_.size() >= kFlushCount ||
          dispatcher->pending() == 0)) {
-      status = Flush();
+      status = Flush(dispatcher);
       last_flush = now;
       // Nothing can advance while the latest generation awaits results;
       // with nothing pending at all, the store is asked in any case.
@@ -182,7 +187,7 @@ Status EvolutionRun::Run(
       }
     }
   }
-  Status flushed = Flush();
+  Status flushed = Flush(dispatcher);
   return status.ok() ? flushed : status;
 }
 

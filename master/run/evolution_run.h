@@ -70,10 +70,11 @@ class EvolutionRun {
       bool force, std::optional<int> generations,
       LogSink log = Prefixed("master", StderrSink));
 
-  // Serves `dispatcher` (built with model_config()) until the run has all
-  // its generations or `stop` becomes true; results received so far are
-  // committed before returning. `progress`, if set, is called after each
-  // generation completes.
+  // Serves `dispatcher` (built with model_config(), and with
+  // acknowledge_on_receipt off so that workers keep each result until it
+  // is committed) until the run has all its generations or `stop` becomes
+  // true; results received so far are committed before returning. `progress`,
+  // if set, is called after each generation completes.
   Status Run(
       Dispatcher* dispatcher, const std::atomic<bool>& stop,
       const std::function<void(const GenerationReport&)>& progress = nullptr);
@@ -119,7 +120,9 @@ class EvolutionRun {
   // the next Flush. Fails on a null-evaluation result the run does not
   // score (the other results are kept).
   Status Serve(Dispatcher* dispatcher, int timeout_ms);
-  Status Flush();
+  // Commits the results received so far and acknowledges them to their
+  // workers.
+  Status Flush(Dispatcher* dispatcher);
 
   lineage::Store* store_;
   RunSettings settings_;
