@@ -3,10 +3,11 @@
 // schema in schema.cc and docs/lineage.md).
 //
 // Writes are transactions: individuals are committed before their genomes
-// leave the master, results in batches as they arrive, so a crash loses at
-// most the results received since the last commit (they are evaluated
-// again on resume, to the same bits). Opening takes an exclusive lock on
-// "<path>.lock", so two masters never share a store.
+// leave the master, results in batches as they arrive (a crash leaves the
+// results received since the last commit unrecorded; workers keep them
+// until acknowledged and send them to the resumed master, docs/lineage.md).
+// Opening takes an exclusive lock on "<path>.lock", so two masters never
+// share a store.
 //
 // Not thread-safe: one thread uses a Store.
 #ifndef ANIMAT_MASTER_LINEAGE_STORE_H_
