@@ -16,6 +16,7 @@ packages=(
   clang-14 libclang-rt-14-dev
   chromium
   slurm-wlm munge systemd
+  podman runc debootstrap debian-archive-keyring
   python3 python3-yaml
 )
 
