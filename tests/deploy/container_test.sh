@@ -45,6 +45,11 @@ skip() {
   exit 77
 }
 [ "$(id -u)" -eq 0 ] || skip "needs root"
+# A sanitizer build's programs need its runtime libraries, which the
+# image (as the Dockerfile makes it) does not have.
+if ldd "$bin/animat-worker" 2>/dev/null | grep -qE 'lib(asan|ubsan|tsan|lsan)'; then
+  skip "a sanitizer build: the image has no sanitizer runtime"
+fi
 command -v podman >/dev/null || skip "needs podman (and runc, debootstrap)"
 python3 -c "import yaml" 2>/dev/null || skip "needs python3-yaml"
 ip netns add "$ns" 2>/dev/null || skip "needs iproute2 and network namespaces"
