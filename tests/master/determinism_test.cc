@@ -71,11 +71,13 @@ TEST_F(MasterTest, RunKilledAndResumedGivesTheStoreOfAnUninterruptedRun) {
     ASSERT_TRUE(AwaitStore(
         db,
         [&](const Progress& p) {
-          // The first kill need not wait for a recorded result: the
-          // initial candidates may all be evaluated before the first
-          // commit of results (0.2 s), which also chooses the population.
-          return (k == 0 || p.evaluated > evaluated_at_last_kill) &&
-                 kills[k].reached(p);
+          // The first kill waits for candidates in the store, not for a
+          // recorded result: the initial candidates may all be evaluated
+          // before the first commit of results (0.2 s), which also chooses
+          // the population.
+          const bool progress =
+              k == 0 ? p.individuals > 0 : p.evaluated > evaluated_at_last_kill;
+          return progress && kills[k].reached(p);
         },
         *master))
         << "the master ended first: " << master->Describe() << "; store "
