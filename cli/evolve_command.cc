@@ -105,6 +105,14 @@ int Run(const Options& o) {
     settings = std::move(read).value();
     if (o.generations) settings->evolution.generations = *o.generations;
   }
+  // From here on SIGTERM and SIGINT (Ctrl-C) stop the run cleanly (at the
+  // latest after its first step), whenever they come.
+  struct sigaction action = {};
+  action.sa_handler = OnSignal;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGTERM, &action, nullptr);
+  sigaction(SIGINT, &action, nullptr);
+
   Result<std::unique_ptr<lineage::Store>> store = lineage::Store::Open(o.db);
   if (!store.ok()) return Fail(store.status().message());
   Result<std::vector<lineage::RunRow>> runs = (*store)->Runs();
@@ -119,12 +127,6 @@ int Run(const Options& o) {
           : EvolutionRun::Resume(store->get(), settings, o.force, o.generations,
                                  log);
   if (!run.ok()) return Fail(run.status().message());
-
-  struct sigaction action = {};
-  action.sa_handler = OnSignal;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGTERM, &action, nullptr);
-  sigaction(SIGINT, &action, nullptr);
 
   zmq::context_t context(1);
   DispatcherOptions options;

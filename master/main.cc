@@ -119,6 +119,14 @@ int main(int argc, char** argv) {
     settings = std::move(read).value();
     if (generations) settings->evolution.generations = *generations;
   }
+  // From here on SIGTERM and SIGINT stop the run cleanly (at the latest
+  // after its first step), whenever they come.
+  struct sigaction action = {};
+  action.sa_handler = OnSignal;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGTERM, &action, nullptr);
+  sigaction(SIGINT, &action, nullptr);
+
   animat::Result<std::unique_ptr<animat::lineage::Store>> store =
       animat::lineage::Store::Open(db_path);
   if (!store.ok()) return Fail(store.status().message());
@@ -127,12 +135,6 @@ int main(int argc, char** argv) {
                                             generations)
              : animat::EvolutionRun::Start(store->get(), *settings);
   if (!run.ok()) return Fail(run.status().message());
-
-  struct sigaction action = {};
-  action.sa_handler = OnSignal;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGTERM, &action, nullptr);
-  sigaction(SIGINT, &action, nullptr);
 
   zmq::context_t context(1);
   auto dispatcher =
