@@ -8,6 +8,7 @@
 #define ANIMAT_COMMON_BODY_BODY_H_
 
 #include <span>
+#include <string>
 #include <vector>
 
 #include "common/base/status.h"
@@ -38,6 +39,27 @@ struct Body {
 
   int nodes() const { return static_cast<int>(position.size()); }
 };
+
+// What kind of body a genome grew (the lineage store records it with every
+// evaluation that got this far).
+struct BodySummary {
+  int cells = 0;
+  int springs = 0;
+  int chambers = 0;
+  int skin_edges = 0;
+  // Standard deviations (radii) of the rest cell centres along the two
+  // principal axes of their covariance: spread_major >= spread_minor >= 0.
+  // A straight chain has spread_minor 0 (up to rounding).
+  double spread_major = 0.0;
+  double spread_minor = 0.0;
+};
+
+BodySummary SummarizeBody(const Body& body);
+
+// MODEL §6 (v2): a body must enclose area. Returns "" when `summary` has at
+// least `min_chambers` chambers, else the reason the evaluation fails
+// ("no chamber: the body encloses no area" when it has none).
+std::string ChamberShortfall(const BodySummary& summary, int min_chambers);
 
 // Builds the body on `centres`, with the cells' `radii` (empty: all 1).
 // Fails with kInvalidArgument, the message saying why, when two centres are

@@ -1,6 +1,7 @@
 #include "common/development/development.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "common/base/fast_math.h"
 
@@ -24,7 +25,8 @@ DevelopmentT<S>::DevelopmentT(const Network& network,
       field_(network.morphogen_count(), params.max_cells, signal_params) {}
 
 template <typename S>
-DevelopmentOutcome DevelopmentT<S>::Run(const Observer& observer) {
+DevelopmentOutcome DevelopmentT<S>::Run(const Observer& observer,
+                                        const NumericalCheck& check) {
   DevelopmentOutcome outcome;
   // The zygote: one cell at the origin, radius 1, angle 0, all levels 0.
   embryo_.position.push_back({0.0, 0.0});
@@ -63,6 +65,16 @@ DevelopmentOutcome DevelopmentT<S>::Run(const Observer& observer) {
     Mechanics();
     outcome.steps_run = step + 1;
     if (observer) observer(step, *this);
+    const bool last = step + 1 == params_.steps;
+    if (late_cell >= 0 || last || (step + 1) % check.interval == 0) {
+      const std::string problem = CheckEmbryo(check.max_coordinate);
+      if (!problem.empty()) {
+        outcome.status = DevelopmentStatus::kNumericalFailure;
+        outcome.reason =
+            problem + " at development step " + std::to_string(step);
+        return outcome;
+      }
+    }
     if (late_cell >= 0) {
       outcome.status = DevelopmentStatus::kLateDivision;
       outcome.reason = "cell " + std::to_string(late_cell) +
@@ -73,14 +85,6 @@ DevelopmentOutcome DevelopmentT<S>::Run(const Observer& observer) {
     }
   }
 
-  for (int cell = 0; cell < embryo_.cells(); ++cell) {
-    if (!IsFinite(embryo_.position[cell])) {
-      outcome.status = DevelopmentStatus::kNumericalFailure;
-      outcome.reason = "non-finite position of cell " + std::to_string(cell) +
-                       " at the end of development";
-      return outcome;
-    }
-  }
   if (embryo_.cells() < params_.min_cells) {
     outcome.status = DevelopmentStatus::kTooFewCells;
     outcome.reason = std::to_string(embryo_.cells()) +
@@ -89,6 +93,26 @@ DevelopmentOutcome DevelopmentT<S>::Run(const Observer& observer) {
                      std::to_string(params_.min_cells) + " needed";
   }
   return outcome;
+}
+
+template <typename S>
+std::string DevelopmentT<S>::CheckEmbryo(double max_coordinate) const {
+  for (int cell = 0; cell < embryo_.cells(); ++cell) {
+    const Vec2 x = embryo_.position[cell];
+    if (!IsFinite(x)) {
+      return "non-finite position of cell " + std::to_string(cell);
+    }
+    if (!std::isfinite(embryo_.radius[cell])) {
+      return "non-finite radius of cell " + std::to_string(cell);
+    }
+    if (std::fabs(x.x) > max_coordinate || std::fabs(x.y) > max_coordinate) {
+      char bound[32];
+      std::snprintf(bound, sizeof(bound), "%g", max_coordinate);
+      return "cell " + std::to_string(cell) +
+             " left the region |x|, |y| <= " + bound;
+    }
+  }
+  return "";
 }
 
 template <typename S>

@@ -34,7 +34,16 @@ enum class DevelopmentStatus {
   kOk,
   kLateDivision,      // A division at or after last_division_step.
   kTooFewCells,       // Fewer than min_cells at the end.
-  kNumericalFailure,  // A non-finite position.
+  kNumericalFailure,  // A non-finite value or a runaway coordinate.
+};
+
+// The numerical check of MODEL §4 and §8 during development: positions
+// and radii must stay finite and every coordinate within max_coordinate
+// (radii). Checked after the mechanics of every interval-th step, before a
+// late division is reported, and at the end.
+struct NumericalCheck {
+  double max_coordinate = 1e6;
+  int interval = 100;  // Development steps between checks, >= 1.
 };
 
 struct DevelopmentOutcome {
@@ -56,8 +65,11 @@ class DevelopmentT {
   using Observer = std::function<void(int step, const DevelopmentT&)>;
 
   // Runs development from the zygote. Stops at once on a late division
-  // (its status takes priority over too few cells). Call once.
-  DevelopmentOutcome Run(const Observer& observer = nullptr);
+  // (its status takes priority over too few cells) or a failed numerical
+  // check (which takes priority over both, whatever the cell count). Call
+  // once.
+  DevelopmentOutcome Run(const Observer& observer = nullptr,
+                         const NumericalCheck& check = {});
 
   const Embryo& embryo() const { return embryo_; }
   GrnBatchT<S>& grn() { return grn_; }
@@ -78,6 +90,9 @@ class DevelopmentT {
   // Divisions of step `step`; returns the number that happened.
   int Divide(int step, int* late_cell);
   void Mechanics();
+  // "" when every position and radius is finite and within the bound,
+  // else the reason.
+  std::string CheckEmbryo(double max_coordinate) const;
 
   const Network& network_;
   DevelopmentParams params_;

@@ -60,7 +60,9 @@ EvaluationResult RunModel(const Network& network, const ModelConfig& config,
       observer->OnDevelopmentStep(step, d.embryo());
     };
   }
-  const DevelopmentOutcome outcome = development.Run(on_step);
+  const EvaluationParams& ev = config.evaluation;
+  const DevelopmentOutcome outcome = development.Run(
+      on_step, NumericalCheck{ev.max_coordinate, ev.check_interval});
   const Embryo& embryo = development.embryo();
   const int cells = embryo.cells();
   int64_t steps = outcome.steps_run;
@@ -81,6 +83,15 @@ EvaluationResult RunModel(const Network& network, const ModelConfig& config,
   if (!body.ok()) {
     return Failure(EvalStatus::kDegenerateBody,
                    "degenerate body: " + body.status().message(), cells, steps);
+  }
+  const BodySummary summary = SummarizeBody(*body);
+  // A body must enclose area (MODEL §6, v2).
+  const std::string shortfall = ChamberShortfall(summary, ev.min_chambers);
+  if (!shortfall.empty()) {
+    EvaluationResult failure =
+        Failure(EvalStatus::kDegenerateBody, shortfall, cells, steps);
+    failure.body = summary;
+    return failure;
   }
 
   // Motion needs only what can influence EXPAND and CONTRACT; the other
@@ -122,7 +133,6 @@ EvaluationResult RunModel(const Network& network, const ModelConfig& config,
   }
 
   // Equilibration: network stopped, velocities damped (§8).
-  const EvaluationParams& ev = config.evaluation;
   for (int step = 1; step <= ev.equilibration_steps; ++step) {
     stepper.Step(&state);
     for (Vec2& v : state.velocity) v = v * ev.equilibration_damping;
@@ -130,10 +140,12 @@ EvaluationResult RunModel(const Network& network, const ModelConfig& config,
     if (CheckDue(step, ev.equilibration_steps, ev.check_interval)) {
       const std::string problem = CheckState(state, ev.max_coordinate);
       if (!problem.empty()) {
-        return Failure(
-            EvalStatus::kNumericalFailure,
-            problem + " at equilibration step " + std::to_string(step), cells,
-            steps);
+        EvaluationResult failure =
+            Failure(EvalStatus::kNumericalFailure,
+                    problem + " at equilibration step " + std::to_string(step),
+                    cells, steps);
+        failure.body = summary;
+        return failure;
       }
     }
     if (observer) {
@@ -163,9 +175,11 @@ EvaluationResult RunModel(const Network& network, const ModelConfig& config,
     if (CheckDue(step, ev.motion_steps, ev.check_interval)) {
       const std::string problem = CheckState(state, ev.max_coordinate);
       if (!problem.empty()) {
-        return Failure(EvalStatus::kNumericalFailure,
-                       problem + " at motion step " + std::to_string(step),
-                       cells, steps);
+        EvaluationResult failure = Failure(
+            EvalStatus::kNumericalFailure,
+            problem + " at motion step " + std::to_string(step), cells, steps);
+        failure.body = summary;
+        return failure;
       }
     }
     if (observer) {
@@ -176,8 +190,10 @@ EvaluationResult RunModel(const Network& network, const ModelConfig& config,
 
   const double fitness = Length(CentreOfMass(state) - start);
   if (!std::isfinite(fitness)) {
-    return Failure(EvalStatus::kNumericalFailure, "non-finite fitness", cells,
-                   steps);
+    EvaluationResult failure = Failure(EvalStatus::kNumericalFailure,
+                                       "non-finite fitness", cells, steps);
+    failure.body = summary;
+    return failure;
   }
   EvaluationResult result;
   result.status = EvalStatus::kOk;
@@ -185,6 +201,7 @@ EvaluationResult RunModel(const Network& network, const ModelConfig& config,
   result.cells = cells;
   result.steps = steps;
   result.state_hash = HashFinalState(state, grn);
+  result.body = summary;
   return result;
 }
 
@@ -221,6 +238,15 @@ v1::EvaluationResult EvaluationResultToProto(const EvaluationResult& r) {
   m.set_cells(r.cells);
   m.set_steps(r.steps);
   m.set_state_hash(r.state_hash);
+  if (r.body) {
+    v1::BodySummary* b = m.mutable_body();
+    b->set_cells(r.body->cells);
+    b->set_springs(r.body->springs);
+    b->set_chambers(r.body->chambers);
+    b->set_skin_edges(r.body->skin_edges);
+    b->set_spread_major(r.body->spread_major);
+    b->set_spread_minor(r.body->spread_minor);
+  }
   return m;
 }
 

@@ -48,6 +48,9 @@ struct EvaluationResult {
   // Hash of the bits of the final positions, velocities and network levels
   // (0 when motion did not run to the end).
   uint64_t state_hash = 0;
+  // The body, once built (ok, a body without enough chambers, or a
+  // numerical failure after development).
+  std::optional<BodySummary> body;
 };
 
 v1::EvaluationResult EvaluationResultToProto(const EvaluationResult& result);

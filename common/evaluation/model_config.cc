@@ -18,6 +18,7 @@ Status EvaluationParamsFromProto(const v1::EvaluationConfig& m,
   if (m.has_motion_steps()) p.motion_steps = m.motion_steps();
   if (m.has_max_coordinate()) p.max_coordinate = m.max_coordinate();
   if (m.has_check_interval()) p.check_interval = m.check_interval();
+  if (m.has_min_chambers()) p.min_chambers = m.min_chambers();
   Status status = FirstError({
       RequireIntInRange("evaluation.equilibration_steps", p.equilibration_steps,
                         0, 100000000),
@@ -28,6 +29,7 @@ Status EvaluationParamsFromProto(const v1::EvaluationConfig& m,
       RequirePositive("evaluation.max_coordinate", p.max_coordinate),
       RequireIntInRange("evaluation.check_interval", p.check_interval, 1,
                         100000000),
+      RequireIntInRange("evaluation.min_chambers", p.min_chambers, 0, 1000),
   });
   if (!status.ok()) return status;
   *params = p;
@@ -62,6 +64,7 @@ v1::Config ConfigToProto(const ModelConfig& c) {
   e->set_motion_steps(c.evaluation.motion_steps);
   e->set_max_coordinate(c.evaluation.max_coordinate);
   e->set_check_interval(c.evaluation.check_interval);
+  e->set_min_chambers(c.evaluation.min_chambers);
   return m;
 }
 

@@ -20,6 +20,7 @@ struct EvaluationParams {
   int motion_steps = 6000;             // Network running.
   double max_coordinate = 1e6;         // Beyond: numerical failure.
   int check_interval = 100;            // Steps between state checks.
+  int min_chambers = 1;  // Fewer chambers: a degenerate body (MODEL §6).
 };
 
 struct ModelConfig {

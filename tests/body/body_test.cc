@@ -528,5 +528,72 @@ TEST(BodyTest, BuildingIsDeterministic) {
   EXPECT_EQ(a.skin, b.skin);
 }
 
+// MODEL §6 (v2): a body must enclose area.
+TEST(ChamberRuleTest, StraightChainHasNoChamberAndFails) {
+  std::vector<Vec2> chain;
+  for (int i = 0; i < 32; ++i) chain.push_back({1.0 * i, 0.0});
+  const BodySummary summary = SummarizeBody(MustBuild(chain));
+  EXPECT_EQ(summary.cells, 32);
+  EXPECT_EQ(summary.springs, 31);
+  EXPECT_EQ(summary.chambers, 0);
+  EXPECT_EQ(summary.skin_edges, 31);
+  EXPECT_EQ(ChamberShortfall(summary, 1),
+            "no chamber: the body encloses no area");
+  EXPECT_EQ(ChamberShortfall(summary, 0), "");  // The old rule.
+}
+
+TEST(ChamberRuleTest, BentChainWithoutABoundedFaceFails) {
+  // 12 cells one radius apart on a quarter circle of radius 7: the angle at
+  // every inner cell is obtuse, so each cell lies inside the circle on its
+  // neighbours' diameter and only consecutive cells are joined.
+  std::vector<Vec2> arc;
+  for (int i = 0; i < 12; ++i) {
+    const double angle = i / 7.0;
+    arc.push_back({7.0 * std::cos(angle), 7.0 * std::sin(angle)});
+  }
+  const BodySummary summary = SummarizeBody(MustBuild(arc));
+  EXPECT_EQ(summary.springs, 11);
+  EXPECT_EQ(summary.chambers, 0);
+  EXPECT_GT(summary.spread_minor, 0.5);  // Bent: not a line.
+  EXPECT_EQ(ChamberShortfall(summary, 1),
+            "no chamber: the body encloses no area");
+}
+
+TEST(ChamberRuleTest, SingleTriangleEnclosesAreaAndPasses) {
+  const BodySummary summary =
+      SummarizeBody(MustBuild({{0.0, 0.0}, {2.0, 0.0}, {1.0, 1.7}}));
+  EXPECT_EQ(summary.springs, 3);
+  EXPECT_EQ(summary.chambers, 1);
+  EXPECT_EQ(summary.skin_edges, 3);
+  EXPECT_EQ(ChamberShortfall(summary, 1), "");
+  EXPECT_NE(ChamberShortfall(summary, 2), "");
+}
+
+TEST(BodySummaryTest, SpreadsArePrincipalStandardDeviations) {
+  // A 3 x 2 grid of cells two radii apart, turned by 30 degrees: the
+  // spreads do not depend on the turn. Along the long side the positions
+  // -2, 0, 2 have variance 8/3; along the short side -1, 1 have variance 1.
+  const double c = std::cos(0.5235987755982988);
+  const double s = std::sin(0.5235987755982988);
+  std::vector<Vec2> grid;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 2; ++j) {
+      const double x = 2.0 * i, y = 2.0 * j;
+      grid.push_back({c * x - s * y + 5.0, s * x + c * y - 3.0});
+    }
+  }
+  const BodySummary summary = SummarizeBody(MustBuild(grid));
+  EXPECT_NEAR(summary.spread_major, std::sqrt(8.0 / 3.0), 1e-12);
+  EXPECT_NEAR(summary.spread_minor, 1.0, 1e-12);
+}
+
+TEST(BodySummaryTest, StraightChainHasNoMinorSpread) {
+  std::vector<Vec2> chain;
+  for (int i = 0; i < 5; ++i) chain.push_back({0.6 * i, 0.8 * i});
+  const BodySummary summary = SummarizeBody(MustBuild(chain));
+  EXPECT_NEAR(summary.spread_major, std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(summary.spread_minor, 0.0, 1e-7);
+}
+
 }  // namespace
 }  // namespace animat

@@ -96,6 +96,68 @@ TEST(EvaluatorTest, RunawayMotionIsANumericalFailure) {
   EXPECT_FALSE(r.reason.empty());
 }
 
+TEST(EvaluatorTest, ChainWithoutChamberFailsAsADegenerateBody) {
+  // seed-1203 develops into a straight chain of 32 cells (MODEL §6, v2).
+  const Genome chain = LoadGenome("seed-1203.json");
+  const EvaluationResult r = Evaluate(chain, ShortConfig());
+  EXPECT_EQ(r.status, EvalStatus::kDegenerateBody);
+  EXPECT_EQ(r.reason, "no chamber: the body encloses no area");
+  EXPECT_FALSE(r.fitness.has_value());
+  EXPECT_EQ(r.steps, 400);  // Only development was paid for.
+  ASSERT_TRUE(r.body.has_value());
+  EXPECT_EQ(r.body->cells, 32);
+  EXPECT_EQ(r.body->springs, 31);
+  EXPECT_EQ(r.body->chambers, 0);
+  EXPECT_LT(r.body->spread_minor, 1e-6);
+  const v1::EvaluationResult m = EvaluationResultToProto(r);
+  ASSERT_TRUE(m.has_body());
+  EXPECT_EQ(m.body().springs(), 31);
+
+  ModelConfig old_rule = ShortConfig();
+  old_rule.evaluation.min_chambers = 0;
+  const EvaluationResult old = Evaluate(chain, old_rule);
+  EXPECT_EQ(old.status, EvalStatus::kOk) << old.reason;
+  EXPECT_EQ(old.steps, 400 + 200 + 300);
+}
+
+TEST(EvaluatorTest, SuccessCarriesItsBodySummary) {
+  const EvaluationResult r =
+      Evaluate(LoadGenome("seed-1198.json"), ShortConfig());
+  ASSERT_EQ(r.status, EvalStatus::kOk) << r.reason;
+  ASSERT_TRUE(r.body.has_value());
+  EXPECT_EQ(r.body->cells, 32);
+  EXPECT_GE(r.body->chambers, 1);
+  EXPECT_GT(r.body->springs, r.body->cells);
+  EXPECT_GE(r.body->spread_major, r.body->spread_minor);
+  EXPECT_GT(r.body->spread_minor, 1.0);
+  // Failures before the body have none.
+  EXPECT_FALSE(Evaluate(LoadGenome("seed-2-too-few-cells.json"), ShortConfig())
+                   .body.has_value());
+}
+
+TEST(EvaluatorTest, DevelopmentBlowUpIsANumericalFailureWhateverTheCells) {
+  // Overdamped mechanics far beyond their stability limit: the first
+  // daughter, placed one radius from its mother, is thrown some 1e8 radii
+  // away in the first sub-step after its birth.
+  ModelConfig config = ShortConfig();
+  config.development.stiffness = 1e9;
+  // Without the blow-up this genome could not pass either: too few cells.
+  config.development.min_cells = 33;
+  testing::FpTrapsOff traps_off;
+  const EvaluationResult r = Evaluate(LoadGenome("seed-1198.json"), config);
+  EXPECT_EQ(r.status, EvalStatus::kNumericalFailure) << r.reason;
+  EXPECT_NE(r.reason.find("at development step"), std::string::npos)
+      << r.reason;
+  EXPECT_LT(r.steps, 400);  // Development ended at once.
+  EXPECT_FALSE(r.fitness.has_value());
+  EXPECT_FALSE(r.body.has_value());
+
+  // Numerical failure also outranks a late division.
+  config.development.last_division_step = 1;
+  EXPECT_EQ(Evaluate(LoadGenome("seed-1198.json"), config).status,
+            EvalStatus::kNumericalFailure);
+}
+
 class PhaseRecorder : public EvaluationObserver {
  public:
   void OnDevelopmentStep(int step, const Embryo&) override {
@@ -175,7 +237,7 @@ TEST(EvaluatorTest, ResultConvertsToProto) {
   ASSERT_TRUE(m.has_fitness());  // A fitness of 0 is still present.
   EXPECT_EQ(m.fitness(), 0.0);
   EXPECT_EQ(
-      EvaluationResultToProto({EvalStatus::kInvalidGenome, "", {}, 0, 0, 0})
+      EvaluationResultToProto({EvalStatus::kInvalidGenome, "", {}, 0, 0, 0, {}})
           .status(),
       v1::EvaluationResult::INVALID_GENOME);
 }

@@ -37,6 +37,12 @@ TEST_P(GoldenTest, FitnessBitsAndFinalStateAreFixed) {
   ASSERT_TRUE(genome.ok());
   ModelConfig config;
   config.grn.precision = golden.precision;
+  // The values below were recorded under MODEL v1: chains allowed and
+  // semi-implicit Euler with one sub-step. `min_chambers: 0` with that
+  // integrator reproduces them bit for bit.
+  config.evaluation.min_chambers = 0;
+  config.physics.integrator = Integrator::kSemiImplicitEuler;
+  config.physics.substeps = 1;
   const EvaluationResult r = Evaluate(*genome, config);
   ASSERT_EQ(r.status, EvalStatus::kOk) << r.reason;
   ASSERT_TRUE(r.fitness.has_value());
@@ -44,6 +50,27 @@ TEST_P(GoldenTest, FitnessBitsAndFinalStateAreFixed) {
       << "fitness " << *r.fitness;
   EXPECT_EQ(r.state_hash, golden.state_hash) << std::hex << r.state_hash;
   EXPECT_EQ(r.cells, 32);
+}
+
+// Under MODEL v2 the chamber rule changes nothing for a body with chambers:
+// the same bits as with min_chambers 0.
+TEST(GoldenTest, ChamberRuleLeavesChamberedBodiesBitIdentical) {
+  v1::Genome message;
+  ASSERT_TRUE(
+      ReadProtoFile(testing::TestData("genomes/seed-1198.json"), &message)
+          .ok());
+  Result<Genome> genome = GenomeFromProto(message);
+  ASSERT_TRUE(genome.ok());
+  ModelConfig with_rule;
+  ModelConfig without_rule;
+  without_rule.evaluation.min_chambers = 0;
+  const EvaluationResult a = Evaluate(*genome, with_rule);
+  const EvaluationResult b = Evaluate(*genome, without_rule);
+  ASSERT_EQ(a.status, EvalStatus::kOk) << a.reason;
+  ASSERT_EQ(b.status, EvalStatus::kOk) << b.reason;
+  EXPECT_EQ(std::bit_cast<uint64_t>(*a.fitness),
+            std::bit_cast<uint64_t>(*b.fitness));
+  EXPECT_EQ(a.state_hash, b.state_hash);
 }
 
 INSTANTIATE_TEST_SUITE_P(
