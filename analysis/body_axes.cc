@@ -26,8 +26,8 @@ double BestRotation(const Recording& r, int from, Vec2 from_centre, int to,
 }
 
 Side Classify(double value, Side positive, Side negative) {
-  if (value > 0) return positive;
-  if (value < 0) return negative;
+  if (value > kOnAxis) return positive;
+  if (value < -kOnAxis) return negative;
   return Side::kNone;
 }
 

@@ -10,9 +10,9 @@
 // centre of mass's steps, each turned back by its frame's θ. For a body
 // that swims straight this is simply the direction of its net
 // displacement. Each cell is put in front or back (left or right) by its
-// mean position in that frame over the window; a cell exactly on an axis
-// is on neither side. Lengths in radii, angles in radians. Pure functions;
-// thread-safe.
+// mean position in that frame over the window; a cell on an axis (within
+// kOnAxis, rounding) is on neither side. Lengths in radii, angles in
+// radians. Pure functions; thread-safe.
 #ifndef ANIMAT_ANALYSIS_BODY_AXES_H_
 #define ANIMAT_ANALYSIS_BODY_AXES_H_
 
@@ -61,6 +61,10 @@ struct BodyAxes {
 // Less movement than this (radii) is rounding noise, not motion (the
 // evolution's threshold for initial genomes, MODEL §9).
 inline constexpr double kMinDistance = 1e-6;
+
+// A cell's mean position this close to an axis (radii) is on the axis:
+// rounding of the rotations would otherwise put it on a side at random.
+inline constexpr double kOnAxis = 1e-9;
 
 // The axes over `window` (at least 2 frames). kInvalidArgument when the
 // window is out of range or too short, or when the centre of mass moves

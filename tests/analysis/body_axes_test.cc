@@ -42,6 +42,23 @@ TEST(BodyAxesTest, TheFrontIsTheDirectionOfMotion) {
   }
 }
 
+TEST(BodyAxesTest, CellsOnAnAxisAreOnNeitherSide) {
+  // A 3 × 3 grid at a heading whose rotations round: its middle row and
+  // column lie on the axes up to rounding.
+  testing::SyntheticSwimmer swimmer;
+  swimmer.columns = 3;
+  swimmer.rows = 3;
+  swimmer.heading = 0.7;
+  swimmer.steps = 399;
+  const Recording r = Record(swimmer);
+  Result<BodyAxes> axes = FindBodyAxes(r, {0, r.frames()});
+  ASSERT_TRUE(axes.ok()) << axes.status().ToString();
+  for (int i = 0; i < r.cells; ++i) {
+    EXPECT_EQ(axes->front_back[i] == Side::kNone, swimmer.BodyX(i) == 0) << i;
+    EXPECT_EQ(axes->left_right[i] == Side::kNone, swimmer.BodyY(i) == 0) << i;
+  }
+}
+
 TEST(BodyAxesTest, ATurningBodyKeepsItsOwnAxes) {
   // Three quarters of a turn while swimming forwards: the net displacement
   // points nowhere near the body's front, but the axes follow the body.
