@@ -3,6 +3,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include "common/geometry/polygon.h"
 
@@ -63,7 +64,10 @@ void SoftBody::AddSpringForces(const MotionState& state, Vec2* force) const {
 }
 
 void SoftBody::AddPressureForces(const MotionState& state, Vec2* force) const {
-  const Vec2* x = state.position.data();
+  AddPressure(state.position.data(), force);
+}
+
+void SoftBody::AddPressure(const Vec2* x, Vec2* force) const {
   const double cp = params_.pressure;
   for (size_t c = 0; c < rest_area_.size(); ++c) {
     const int begin = walk_begin_[c];
@@ -153,10 +157,81 @@ void SoftBody::Acceleration(const MotionState& state, bool drag,
   for (Vec2& a : *out) a = a / m;
 }
 
+void SoftBody::Measure(const std::vector<Vec2>& position,
+                       Geometry* geometry) const {
+  const Vec2* x = position.data();
+  geometry->spring_length.resize(rest_.size());
+  geometry->spring_unit.resize(rest_.size());
+  for (size_t s = 0; s < rest_.size(); ++s) {
+    const Vec2 d = x[spring_b_[s]] - x[spring_a_[s]];
+    const double l = Length(d);
+    geometry->spring_length[s] = l;
+    geometry->spring_unit[s] = l > 0.0 ? d / l : Vec2{};
+  }
+  geometry->skin_length.resize(skin_a_.size());
+  geometry->skin_tangent.resize(skin_a_.size());
+  for (size_t e = 0; e < skin_a_.size(); ++e) {
+    const Vec2 d = x[skin_b_[e]] - x[skin_a_[e]];
+    const double l = Length(d);
+    geometry->skin_length[e] = l;
+    geometry->skin_tangent[e] = l > 0.0 ? d / l : Vec2{};
+  }
+  geometry->pressure.assign(nodes_, Vec2{});
+  AddPressure(x, geometry->pressure.data());
+}
+
+void SoftBody::AccelerationFrom(const Geometry& geometry,
+                                const std::vector<Vec2>& velocity, bool drag,
+                                std::vector<Vec2>* out) const {
+  std::vector<Vec2>& force = *out;
+  force = geometry.pressure;
+  const Vec2* v = velocity.data();
+  const double k = params_.stiffness;
+  const double gamma = params_.damping;
+  for (size_t s = 0; s < rest_.size(); ++s) {
+    const int a = spring_a_[s];
+    const int b = spring_b_[s];
+    const Vec2 u = geometry.spring_unit[s];
+    const double f = k * (geometry.spring_length[s] - rest_[s]) +
+                     gamma * Dot(v[b] - v[a], u);
+    const Vec2 fa = u * f;
+    force[a] += fa;
+    force[b] -= fa;
+  }
+  if (drag) {
+    const double dn = params_.drag_normal;
+    const double dt = params_.drag_tangential;
+    for (size_t e = 0; e < skin_a_.size(); ++e) {
+      const double l = geometry.skin_length[e];
+      if (!(l > 0.0)) continue;  // No length, no drag.
+      const int a = skin_a_[e];
+      const int b = skin_b_[e];
+      const Vec2 t = geometry.skin_tangent[e];
+      const Vec2 n{t.y, -t.x};
+      const Vec2 vc = (v[a] + v[b]) * 0.5;
+      const double vt = Dot(vc, t);
+      const double vn = Dot(vc, n);
+      const Vec2 f = t * (-dt * l * std::fabs(vt) * vt) +
+                     n * (-dn * l * std::fabs(vn) * vn);
+      const Vec2 half = f * 0.5;
+      force[a] += half;
+      force[b] += half;
+    }
+  }
+  const double m = params_.mass;
+  for (Vec2& a : force) a = a / m;
+}
+
 void SoftBody::VerletStep(double h, bool drag, MotionState* state) {
+  const size_t bytes = static_cast<size_t>(nodes_) * sizeof(Vec2);
+  if (measured_position_.size() != state->position.size() ||
+      std::memcmp(measured_position_.data(), state->position.data(), bytes) !=
+          0) {
+    Measure(state->position, &geometry_);
+  }
   std::vector<Vec2>& a0 = k_[0];
   std::vector<Vec2>& a1 = k_[1];
-  Acceleration(*state, drag, &a0);
+  AccelerationFrom(geometry_, state->velocity, drag, &a0);
   stage_.position.resize(nodes_);
   stage_.velocity.resize(nodes_);
   const double half_h2 = 0.5 * h * h;
@@ -165,12 +240,15 @@ void SoftBody::VerletStep(double h, bool drag, MotionState* state) {
         state->position[i] + state->velocity[i] * h + a0[i] * half_h2;
     stage_.velocity[i] = state->velocity[i] + a0[i] * h;
   }
-  Acceleration(stage_, drag, &a1);
+  Measure(stage_.position, &next_geometry_);
+  AccelerationFrom(next_geometry_, stage_.velocity, drag, &a1);
   const double half_h = 0.5 * h;
   for (int i = 0; i < nodes_; ++i) {
     state->position[i] = stage_.position[i];
     state->velocity[i] += (a0[i] + a1[i]) * half_h;
   }
+  std::swap(geometry_, next_geometry_);
+  measured_position_ = state->position;
 }
 
 void SoftBody::Rk4Step(double h, bool drag, MotionState* state) {

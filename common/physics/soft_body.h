@@ -63,7 +63,11 @@ class SoftBody : public MotionStepper {
   // h = dt / substeps, each by params().integrator:
   //   semi-implicit Euler (MODEL §7): v <- v + F(x, v) / m h; x <- x + v h;
   //   velocity Verlet: x <- x + v h + a0 h^2 / 2 with a0 = F(x, v) / m,
-  //     a1 = F(x', v + a0 h) / m, v <- v + (a0 + a1) h / 2;
+  //     a1 = F(x', v + a0 h) / m, v <- v + (a0 + a1) h / 2. The geometry
+  //     of x' (spring and skin lengths and directions, pressure) serves
+  //     the next sub-step's a0 as long as the positions are unchanged bit
+  //     for bit, so each sub-step measures the geometry once; only the
+  //     velocity-dependent terms and the rest lengths are evaluated twice;
   //   RK4: the classical fourth-order Runge-Kutta on (x, v).
   // With DragUpdate::kStable the integrator sees no drag; instead
   // ApplyStableDrag(h / 2) runs before and after it (Strang splitting).
@@ -94,6 +98,25 @@ class SoftBody : public MotionStepper {
   void EulerStep(double h, bool drag, MotionState* state);
   void VerletStep(double h, bool drag, MotionState* state);
   void Rk4Step(double h, bool drag, MotionState* state);
+  // What the forces need of the positions alone (MODEL §7): each spring's
+  // length and unit vector, each skin edge's length and tangent, and the
+  // pressure force on each node.
+  struct Geometry {
+    std::vector<double> spring_length;
+    std::vector<Vec2> spring_unit;
+    std::vector<double> skin_length;
+    std::vector<Vec2> skin_tangent;
+    std::vector<Vec2> pressure;
+  };
+  void Measure(const std::vector<Vec2>& position, Geometry* geometry) const;
+  // Pressure (AddPressureForces) at positions x.
+  void AddPressure(const Vec2* x, Vec2* force) const;
+  // out <- F / m from the geometry of the positions, the velocities and the
+  // current rest lengths: pressure, then springs, then drag, each in index
+  // order.
+  void AccelerationFrom(const Geometry& geometry,
+                        const std::vector<Vec2>& velocity, bool drag,
+                        std::vector<Vec2>* out) const;
   // force_ <- acceleration F / m at `state`.
   void Acceleration(const MotionState& state, bool drag,
                     std::vector<Vec2>* out);
@@ -103,6 +126,10 @@ class SoftBody : public MotionStepper {
   MotionState stage_;
   std::vector<Vec2> k_[8];
   std::vector<double> drag_matrix_;  // 3 per node: a11, a12, a22.
+  // Velocity Verlet: the geometry of the positions the last sub-step left,
+  // and of the next ones.
+  Geometry geometry_, next_geometry_;
+  std::vector<Vec2> measured_position_;  // Where geometry_ was measured.
   std::vector<Vec2> drag_rhs_;
 };
 

@@ -116,6 +116,79 @@ TEST(IntegratorTest, HigherOrderIsMoreAccurateAtTheSameStep) {
   EXPECT_LT(rk4, verlet);
 }
 
+TEST(VelocityVerletTest, EqualsTwoFullForceEvaluationsPerStepToRounding) {
+  // The scheme written out with ComputeForces at both ends of every step;
+  // SoftBody measures each position's geometry once. Actuation changes
+  // every step and the velocities are damped between steps, as in
+  // equilibration.
+  const Problem p = SmoothProblem(17);
+  PhysicsParams params;
+  params.integrator = Integrator::kVelocityVerlet;
+  SoftBody body(p.body, params);
+  SoftBody forces(p.body, params);
+  MotionState state = p.start;
+  MotionState by_hand = p.start;
+  const int n = p.body.nodes();
+  const double h = params.dt;
+  std::vector<Vec2> a0, a1;
+  for (int step = 0; step < 200; ++step) {
+    std::vector<double> expand(n), contract(n);
+    for (int i = 0; i < n; ++i) {
+      expand[i] = p.expand[i] * (0.5 + 0.5 * std::sin(0.1 * step + i));
+      contract[i] = p.contract[i] * (0.5 + 0.5 * std::cos(0.13 * step));
+    }
+    body.SetActuation(expand, contract);
+    body.Step(&state);
+    forces.SetActuation(expand, contract);
+    forces.ComputeForces(by_hand, &a0);
+    MotionState end = by_hand;
+    for (int i = 0; i < n; ++i) {
+      a0[i] = a0[i] / params.mass;
+      end.position[i] += by_hand.velocity[i] * h + a0[i] * (0.5 * h * h);
+      end.velocity[i] += a0[i] * h;
+    }
+    forces.ComputeForces(end, &a1);
+    for (int i = 0; i < n; ++i) {
+      by_hand.position[i] = end.position[i];
+      by_hand.velocity[i] += (a0[i] + a1[i] / params.mass) * (0.5 * h);
+    }
+    if (step % 3 == 0) {
+      for (Vec2& v : state.velocity) v = v * 0.9;
+      for (Vec2& v : by_hand.velocity) v = v * 0.9;
+    }
+  }
+  EXPECT_LT(MaxDistance(state, by_hand), 1e-12);
+  for (int i = 0; i < n; ++i) {
+    EXPECT_LT(Length(state.velocity[i] - by_hand.velocity[i]), 1e-12);
+  }
+}
+
+TEST(VelocityVerletTest, AFreshBodyContinuesWithTheSameBits) {
+  // What one sub-step keeps for the next (the geometry of its end) is
+  // exactly what a fresh SoftBody measures; positions moved between steps
+  // are measured again.
+  const Problem p = SmoothProblem(19);
+  PhysicsParams params;
+  params.integrator = Integrator::kVelocityVerlet;
+  params.substeps = 2;
+  SoftBody body(p.body, params);
+  body.SetActuation(p.expand, p.contract);
+  MotionState state = p.start;
+  for (int step = 0; step < 5; ++step) body.Step(&state);
+  for (bool move : {false, true}) {
+    if (move) state.position[0].x += 0.01;
+    MotionState fresh_state = state;
+    body.Step(&state);
+    SoftBody fresh(p.body, params);
+    fresh.SetActuation(p.expand, p.contract);
+    fresh.Step(&fresh_state);
+    for (int i = 0; i < p.body.nodes(); ++i) {
+      EXPECT_EQ(state.position[i], fresh_state.position[i]) << move;
+      EXPECT_EQ(state.velocity[i], fresh_state.velocity[i]) << move;
+    }
+  }
+}
+
 TEST(IntegratorTest, OneSubStepOfEulerIsTheModelStep) {
   // substeps = 1 divides dt by 1: exactly v += F/m dt; x += v dt.
   const Problem p = SmoothProblem(3);
