@@ -4,6 +4,8 @@
 #include <numbers>
 #include <string>
 
+#include "analysis/strategy_features.h"
+
 namespace animat::analysis {
 namespace {
 
@@ -185,6 +187,7 @@ Result<Analysis> Analyze(const Recording& recording,
                       activity, frequency);
   a.front_to_back = LagBetween(a.front, a.back, a.period_steps);
   a.left_to_right = LagBetween(a.left, a.right, a.period_steps);
+  a.strategy = ClassifyStrategy(MeasureStrategyFeatures(recording, a));
   return a;
 }
 
@@ -255,6 +258,7 @@ v1::Analysis AnalysisToProto(const Analysis& a, std::optional<double> fitness) {
     if (c.stroke) cell->set_stroke(*c.stroke);
     cell->set_driver(c.driver);
   }
+  StrategyToProto(a.strategy, out.mutable_strategy());
   return out;
 }
 

@@ -1,8 +1,8 @@
 // The analysis of a swimming animat (docs/analysis.md): body axes from the
 // direction of motion, activity along them, the dominant period and
-// amplitude of actuation, phase lags front→back and left→right, and the
-// cells that drive the motion. Pure function of the recording and the
-// options; thread-safe.
+// amplitude of actuation, phase lags front→back and left→right, the cells
+// that drive the motion, and the swimming strategy. Pure function of the
+// recording and the options; thread-safe.
 #ifndef ANIMAT_ANALYSIS_ANALYZE_H_
 #define ANIMAT_ANALYSIS_ANALYZE_H_
 
@@ -14,6 +14,7 @@
 #include "analysis/body_axes.h"
 #include "analysis/recording.h"
 #include "analysis/spectrum.h"
+#include "analysis/strategy.h"
 #include "animat/v1/analysis.pb.h"
 #include "common/base/status.h"
 
@@ -70,6 +71,7 @@ struct Analysis {
   std::vector<CellSummary> cells;
   std::vector<int> drivers;  // Largest stroke first.
   ActivitySeries activity;
+  Strategy strategy;  // Turtle, shark, worm, jellyfish or other.
 };
 
 // The window for `options` (see AnalysisOptions). kInvalidArgument when it
