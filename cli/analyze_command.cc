@@ -2,8 +2,10 @@
 //   [--run R] | --trace FILE) [--from STEP] [--to STEP] [-o FILE]
 //
 // Body axes, activity along them, dominant period and amplitude of
-// actuation, phase lags and driver cells (docs/analysis.md), as an
-// animat.v1.Analysis.
+// actuation, phase lags, driver cells and the swimming strategy
+// (docs/analysis.md), as an animat.v1.Analysis. With -o FILE it also
+// prints the strategy, its scores and features on standard output.
+#include <cstdio>
 #include <memory>
 #include <optional>
 #include <string>
@@ -40,6 +42,9 @@ int Run(const Options& o) {
   Status status =
       WriteProtoFile(o.output, analysis::AnalysisToProto(*result, fitness));
   if (!status.ok()) return Fail(status.message());
+  if (o.output != "-") {
+    std::fputs(analysis::StrategySummary(result->strategy).c_str(), stdout);
+  }
   return 0;
 }
 
@@ -49,14 +54,15 @@ Command AddAnalyzeCommand(CLI::App& app) {
   auto o = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
       "analyze",
-      "Body axes, activity, period, amplitude, phase lags and driver cells "
-      "of a swimming animat (docs/analysis.md)");
+      "Body axes, activity, period, amplitude, phase lags, driver cells "
+      "and swimming strategy of an animat (docs/analysis.md)");
   AddAnimatSourceOptions(sub, &o->source);
   sub->add_option("--from", o->from,
                   "First motion step analysed (default: half way)");
   sub->add_option("--to", o->to, "Last motion step analysed (default: last)");
   sub->add_option("-o,--output", o->output,
-                  "Output file (.json, .txtpb); - for JSON on standard output")
+                  "Output file (.json, .txtpb); - for JSON on standard output "
+                  "(otherwise the strategy is printed there)")
       ->capture_default_str();
   return [o] { return Run(*o); };
 }
