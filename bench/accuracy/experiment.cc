@@ -122,7 +122,31 @@ void Summarise(CandidateResult* result) {
   result->cpu_ms_median = Median(cpu_ok.empty() ? cpu_all : cpu_ok);
 }
 
+// Each animat's configuration: `config` with the animat's model constants.
+Result<std::vector<ModelConfig>> PerAnimat(const ModelConfig& config,
+                                           const std::vector<Animat>& animats) {
+  std::vector<ModelConfig> configs;
+  for (const Animat& animat : animats) {
+    Result<ModelConfig> c = ForAnimat(config, animat);
+    if (!c.ok()) return c.status();
+    configs.push_back(*c);
+  }
+  return configs;
+}
+
 }  // namespace
+
+std::string RuleChoice(const std::vector<CandidateResult>& candidates) {
+  std::string choice;
+  double cheapest = kInfinity;
+  for (const CandidateResult& c : candidates) {
+    if (c.MeetsRule() && c.ms_median < cheapest) {
+      cheapest = c.ms_median;
+      choice = c.candidate.Label();
+    }
+  }
+  return choice;
+}
 
 Result<Report> RunExperiment(const ExperimentOptions& options) {
   const auto clock_start = std::chrono::steady_clock::now();
@@ -167,7 +191,9 @@ Result<Report> RunExperiment(const ExperimentOptions& options) {
   {
     std::vector<Animat> kept;
     for (const Animat& animat : animats) {
-      Run run = RunEvaluation(animat.genome, *reference_config);
+      Result<ModelConfig> config = ForAnimat(*reference_config, animat);
+      if (!config.ok()) return config.status();
+      Run run = RunEvaluation(animat.genome, *config);
       if (!run.ok() || !(run.fitness > 0.0)) {
         report.excluded.push_back(animat.name + " (reference: " +
                                   std::string(EvalStatusName(run.status)) +
@@ -193,13 +219,19 @@ Result<Report> RunExperiment(const ExperimentOptions& options) {
   // Chaos: one ulp of dt.
   {
     std::vector<Run> base, nudged, reference_nudged;
-    const ModelConfig default_nudged = NudgeDt(*default_config);
-    const ModelConfig ref_nudged = NudgeDt(*reference_config);
-    for (const Animat& animat : animats) {
-      base.push_back(RunEvaluation(animat.genome, *default_config));
-      nudged.push_back(RunEvaluation(animat.genome, default_nudged));
+    Result<std::vector<ModelConfig>> defaults =
+        PerAnimat(*default_config, animats);
+    Result<std::vector<ModelConfig>> references =
+        PerAnimat(*reference_config, animats);
+    if (!defaults.ok()) return defaults.status();
+    if (!references.ok()) return references.status();
+    for (size_t a = 0; a < animats.size(); ++a) {
+      const Genome& genome = animats[a].genome;
+      base.push_back(RunEvaluation(genome, (*defaults)[a]));
+      nudged.push_back(RunEvaluation(genome, NudgeDt((*defaults)[a])));
       if (!options.quick) {
-        reference_nudged.push_back(RunEvaluation(animat.genome, ref_nudged));
+        reference_nudged.push_back(
+            RunEvaluation(genome, NudgeDt((*references)[a])));
       }
     }
     // Also over the evolved animats alone when the set has both kinds.
@@ -235,17 +267,20 @@ Result<Report> RunExperiment(const ExperimentOptions& options) {
 
   // Candidates.
   std::vector<CandidateResult> results;
-  std::vector<ModelConfig> configs;
-  std::vector<int> loaded_index;  // Into results.
+  std::vector<std::vector<ModelConfig>> configs;  // [candidate][animat]
+  std::vector<int> loaded_index;                  // Into results.
   for (const Candidate& candidate : CandidateSet()) {
     CandidateResult result;
     result.candidate = candidate;
     Result<ModelConfig> config = CandidateConfig(candidate);
-    if (config.ok()) {
+    Result<std::vector<ModelConfig>> per_animat =
+        config.ok() ? PerAnimat(*config, animats)
+                    : Result<std::vector<ModelConfig>>(config.status());
+    if (per_animat.ok()) {
       loaded_index.push_back(static_cast<int>(results.size()));
-      configs.push_back(*config);
+      configs.push_back(*per_animat);
     } else {
-      result.error = config.status().message();
+      result.error = per_animat.status().message();
     }
     results.push_back(std::move(result));
   }
@@ -261,7 +296,7 @@ Result<Report> RunExperiment(const ExperimentOptions& options) {
   for (int rep = 0; rep < report.repeats; ++rep) {
     for (size_t a = 0; a < animats.size(); ++a) {
       for (size_t c = 0; c < n; ++c) {
-        Run run = RunEvaluation(animats[a].genome, configs[c]);
+        Run run = RunEvaluation(animats[a].genome, configs[c][a]);
         seconds[c][a].push_back(run.seconds);
         cpu_seconds[c][a].push_back(run.cpu_seconds);
         if (rep == 0) {
@@ -355,6 +390,7 @@ Result<Report> RunExperiment(const ExperimentOptions& options) {
   }
   for (int p : ParetoFront(points)) results[point_owner[p]].on_front = true;
 
+  report.rule_choice = RuleChoice(results);
   report.candidates = std::move(results);
   report.machine += std::string(", ") + LoadAverage() + " at the end";
   report.total_seconds = elapsed();

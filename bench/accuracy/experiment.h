@@ -5,6 +5,7 @@
 
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "bench/accuracy/results.h"
 #include "common/base/status.h"
@@ -33,6 +34,11 @@ struct ExperimentOptions {
 
 // The chaos measurement's motion steps.
 inline constexpr int kChaosSteps[] = {500, 1000, 2000, 4000, 6000};
+
+// MODEL §7: the label of the cheapest candidate (median ms per evaluation;
+// the first of equals) that meets the rule (CandidateResult::MeetsRule), or
+// "" when none does.
+std::string RuleChoice(const std::vector<CandidateResult>& candidates);
 
 // Runs everything single-threaded (so that timings are not disturbed by a
 // second evaluation on the other core). Interleaves the candidates within

@@ -1,5 +1,6 @@
 #include "bench/accuracy/report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -73,6 +74,30 @@ KindSummary SummariseKind(const CandidateResult& c, bool evolved) {
   return {Median(errors), Percentile90(errors), Median(ms)};
 }
 
+// The candidates that meet MODEL §7's rule, cheapest first, and the choice.
+std::string RuleSummary(const Report& report) {
+  std::vector<const CandidateResult*> meeting;
+  for (const CandidateResult& c : report.candidates) {
+    if (c.MeetsRule()) meeting.push_back(&c);
+  }
+  std::stable_sort(meeting.begin(), meeting.end(),
+                   [](const CandidateResult* a, const CandidateResult* b) {
+                     return a->ms_median < b->ms_median;
+                   });
+  if (meeting.empty()) {
+    return "**No candidate meets the rule** on this set.\n";
+  }
+  std::string md = "Meeting the rule, cheapest first:";
+  for (size_t i = 0; i < meeting.size(); ++i) {
+    const CandidateResult& c = *meeting[i];
+    md += std::string(i ? "," : "") + " `" + c.candidate.Label() + "` (" +
+          Ms(c.ms_median) + " ms, p90 " + Error(c.fitness_error_p90) + ")";
+  }
+  md += ". **Chosen: `" + report.rule_choice + "`** (" +
+        meeting.front()->candidate.Name() + ").\n";
+  return md;
+}
+
 }  // namespace
 
 std::string CsvField(const std::string& text) {
@@ -122,28 +147,31 @@ std::string SummaryCsv(const Report& report) {
       "trajectory_error_median,trajectory_error_p90,ms_per_evaluation_median,"
       "cpu_ms_per_evaluation_median,pareto_front,order_swaps,order_pairs,"
       "error,note,counterpart,counterpart_difference_median,"
-      "counterpart_difference_p90\n";
+      "counterpart_difference_p90,meets_rule,chosen\n";
   for (const CandidateResult& c : report.candidates) {
     const Candidate& k = c.candidate;
     csv += k.Label() + "," + CsvField(k.Name()) + "," + k.integrator + "," +
            std::to_string(k.substeps) + "," + k.drag_update + "," +
            k.precision + "," + k.backend + ",";
     if (!Measured(c)) {
-      csv += std::string(",,,,,,,,false,,,") + CsvField(c.error) + ",,,,\n";
+      csv += std::string(",,,,,,,,false,,,") + CsvField(c.error) +
+             ",,,,,false,false\n";
       continue;
     }
-    csv +=
-        std::to_string(c.animats.size()) + "," + std::to_string(c.failures) +
-        "," + CsvNumber(c.fitness_error_median) + "," +
-        CsvNumber(c.fitness_error_p90) + "," +
-        CsvNumber(c.trajectory_error_median) + "," +
-        CsvNumber(c.trajectory_error_p90) + "," + Format("%.3f", c.ms_median) +
-        "," + Format("%.3f", c.cpu_ms_median) + "," +
-        (c.on_front ? "true" : "false") + "," + std::to_string(c.order_swaps) +
-        "," + std::to_string(c.order_pairs) + "," + CsvField(c.error) + "," +
-        CsvField(c.note) + "," + c.counterpart + "," +
-        (c.counterpart.empty() ? "" : CsvNumber(c.counterpart_median)) + "," +
-        (c.counterpart.empty() ? "" : CsvNumber(c.counterpart_p90)) + "\n";
+    csv += std::to_string(c.animats.size()) + "," + std::to_string(c.failures) +
+           "," + CsvNumber(c.fitness_error_median) + "," +
+           CsvNumber(c.fitness_error_p90) + "," +
+           CsvNumber(c.trajectory_error_median) + "," +
+           CsvNumber(c.trajectory_error_p90) + "," +
+           Format("%.3f", c.ms_median) + "," + Format("%.3f", c.cpu_ms_median) +
+           "," + (c.on_front ? "true" : "false") + "," +
+           std::to_string(c.order_swaps) + "," + std::to_string(c.order_pairs) +
+           "," + CsvField(c.error) + "," + CsvField(c.note) + "," +
+           c.counterpart + "," +
+           (c.counterpart.empty() ? "" : CsvNumber(c.counterpart_median)) +
+           "," + (c.counterpart.empty() ? "" : CsvNumber(c.counterpart_p90)) +
+           "," + (c.MeetsRule() ? "true" : "false") + "," +
+           (k.Label() == report.rule_choice ? "true" : "false") + "\n";
   }
   return csv;
 }
@@ -175,8 +203,8 @@ std::string SummaryMarkdown(const Report& report) {
   md +=
       "| | candidate | fitness error median | p90 | trajectory error "
       "median | p90 | order swaps | ms / eval | CPU ms | failures | front "
-      "|\n";
-  md += "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
+      "| rule |\n";
+  md += "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n";
   std::vector<std::string> notes;
   for (const CandidateResult& c : report.candidates) {
     const Candidate& k = c.candidate;
@@ -194,7 +222,7 @@ std::string SummaryMarkdown(const Report& report) {
     }
     md += "| `" + k.Label() + "` | " + k.Name() + mark + " | ";
     if (!Measured(c)) {
-      md += "— | — | — | — | — | — | — | not run | |\n";
+      md += "— | — | — | — | — | — | — | not run | | |\n";
       continue;
     }
     const std::string bold = c.on_front ? "**" : "";
@@ -205,7 +233,11 @@ std::string SummaryMarkdown(const Report& report) {
           std::to_string(c.order_swaps) + "/" + std::to_string(c.order_pairs) +
           " | " + bold + Ms(c.ms_median) + bold + " | " + Ms(c.cpu_ms_median) +
           " | " + std::to_string(c.failures) + " | " +
-          (c.on_front ? "**yes**" : "") + " |\n";
+          (c.on_front ? "**yes**" : "") + " | " +
+          (c.candidate.Label() == report.rule_choice ? "**chosen**"
+           : c.MeetsRule()                           ? "meets"
+                                                     : "") +
+          " |\n";
   }
   md += "\n";
   md +=
@@ -219,7 +251,12 @@ std::string SummaryMarkdown(const Report& report) {
       "no other candidate without failures is both faster and more "
       "accurate (median time, median fitness error); candidates with a "
       "failure, or not run, or whose option had no effect are not "
-      "eligible.\n";
+      "eligible. Rule (MODEL §7): every evaluation ok, fitness error at "
+      "most " +
+      Format("%g", kRuleP90) +
+      " at the 90th percentile and no pair swapped; the cheapest (median "
+      "ms per evaluation) that meets it is chosen as the default.\n";
+  md += "\n" + RuleSummary(report);
   if (!notes.empty()) {
     md += "\n";
     for (size_t i = 0; i < notes.size(); ++i) {

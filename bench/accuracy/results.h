@@ -63,7 +63,17 @@ struct CandidateResult {
   bool Eligible() const {
     return error.empty() && !animats.empty() && failures == 0;
   }
+  // MODEL §7's rule for the default integrator: eligible, fitness error at
+  // most kRuleP90 at the 90th percentile, and no pair swapped.
+  bool MeetsRule() const;
 };
+
+// The 90th-percentile fitness error MODEL §7 allows the default.
+inline constexpr double kRuleP90 = 0.01;
+
+inline bool CandidateResult::MeetsRule() const {
+  return Eligible() && fitness_error_p90 <= kRuleP90 && order_swaps == 0;
+}
 
 // Divergence of two runs whose dt differs by one ulp.
 struct ChaosResult {
@@ -92,6 +102,9 @@ struct Report {
   std::vector<CandidateResult> candidates;
   std::vector<ChaosResult> chaos;
   double total_seconds = 0.0;
+  // The label of the cheapest candidate (median ms per evaluation) that
+  // meets MODEL §7's rule, or empty when none does.
+  std::string rule_choice;
 };
 
 }  // namespace animat::accuracy

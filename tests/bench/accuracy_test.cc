@@ -1,6 +1,8 @@
 // The accuracy report's own logic: statistics, the Pareto front, the SVG
 // writer, the candidate set and the animat set's kinds (bench/accuracy/).
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <limits>
 #include <set>
 #include <string>
@@ -10,6 +12,7 @@
 
 #include "bench/accuracy/animat_set.h"
 #include "bench/accuracy/candidates.h"
+#include "bench/accuracy/experiment.h"
 #include "bench/accuracy/report.h"
 #include "bench/accuracy/stats.h"
 #include "bench/accuracy/svg_plot.h"
@@ -317,7 +320,7 @@ TEST(AnimatSetTest, QuickSubsetTakesTheFirstOfEachKindInOrder) {
   std::vector<Animat> set;
   for (const char* name : {"evolved-a", "evolved-b", "seed-1", "seed-2",
                            "seed-3", "seed-4", "seed-5"}) {
-    set.push_back({name, Genome{}, IsEvolvedName(name)});
+    set.push_back({name, Genome{}, IsEvolvedName(name), ""});
   }
   EXPECT_EQ(Names(QuickSubset(set, 4, 1)),
             (std::vector<std::string>{"evolved-a", "seed-1", "seed-2", "seed-3",
@@ -359,6 +362,92 @@ TEST(ReportTest, MixedSetGetsATableOfEachKindAndAKindColumn) {
   report.candidates[0].animats[1].evolved = false;
   EXPECT_EQ(SummaryMarkdown(report).find("### Random and evolved"),
             std::string::npos);
+}
+
+CandidateResult Measured(const char* integrator, int substeps, double ms,
+                         double p90, int swaps) {
+  CandidateResult c;
+  c.candidate.integrator = integrator;
+  c.candidate.substeps = substeps;
+  c.candidate.drag_update = "EXPLICIT";
+  c.candidate.precision = "FLOAT";
+  c.candidate.backend = "NATIVE";
+  c.animats.push_back({"a", "ok", "", 1.0, 1.0, p90, p90, ms, ms, 7, true});
+  c.fitness_error_median = c.fitness_error_p90 = p90;
+  c.ms_median = ms;
+  c.order_swaps = swaps;
+  c.order_pairs = 10;
+  return c;
+}
+
+TEST(RuleTest, CheapestCandidateWithinOnePercentAndNoSwapIsChosen) {
+  std::vector<CandidateResult> set = {
+      Measured("SEMI_IMPLICIT_EULER", 1, 17.0, 0.33, 20),  // Too coarse.
+      Measured("VELOCITY_VERLET", 1, 19.0, 0.0101, 0),     // Just over 1%.
+      Measured("VELOCITY_VERLET", 2, 25.0, 0.003, 1),      // Swaps a pair.
+      Measured("RK4", 1, 27.0, 0.0002, 0),
+      Measured("VELOCITY_VERLET", 4, 26.0, 0.01, 0),  // At 1%: meets.
+  };
+  EXPECT_FALSE(set[0].MeetsRule());
+  EXPECT_FALSE(set[1].MeetsRule());
+  EXPECT_FALSE(set[2].MeetsRule());
+  EXPECT_TRUE(set[3].MeetsRule());
+  EXPECT_TRUE(set[4].MeetsRule());
+  EXPECT_EQ(RuleChoice(set), "V4f");
+  // A failed evaluation disqualifies.
+  set[4].failures = 1;
+  EXPECT_EQ(RuleChoice(set), "R1f");
+  set[3].error = "no effect";
+  EXPECT_EQ(RuleChoice(set), "");
+
+  Report report;
+  report.repeats = 1;
+  report.animats = {"a"};
+  report.reference_fitness = {1.0};
+  report.candidates = {set[0], Measured("RK4", 1, 27.0, 0.0002, 0)};
+  report.rule_choice = RuleChoice(report.candidates);
+  const std::string md = SummaryMarkdown(report);
+  EXPECT_NE(md.find("**Chosen: `R1f`**"), std::string::npos) << md;
+  EXPECT_NE(md.find("| **chosen** |"), std::string::npos);
+}
+
+// A temporary folder with one genome (the test data's sample) and, when
+// `model` is not empty, its model file.
+std::string SetWithModelFile(const std::string& model) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(::testing::TempDir()) /
+                       ("animat-set-" + std::to_string(model.size()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::copy_file(fs::path(ANIMAT_TEST_DATA_DIR) / "genomes" / "seed-1198.json",
+                dir / "evolved-x.json");
+  if (!model.empty()) {
+    std::ofstream(dir / "evolved-x.model.txtpb") << model;
+  }
+  return dir.string();
+}
+
+TEST(AnimatSetTest, ModelFileGivesTheConstantsTheAnimatEvolvedUnder) {
+  Result<std::vector<Animat>> set = LoadAnimatSet(
+      SetWithModelFile("physics { drag_normal: 10 drag_tangential: 0.05 }"));
+  ASSERT_TRUE(set.ok()) << set.status().message();
+  ASSERT_EQ(set->size(), 1u);  // The model file is not a genome.
+  ModelConfig rk4;
+  rk4.physics.integrator = Integrator::kRk4;
+  Result<ModelConfig> config = ForAnimat(rk4, set->front());
+  ASSERT_TRUE(config.ok()) << config.status().message();
+  EXPECT_EQ(config->physics.drag_normal, 10.0);
+  EXPECT_EQ(config->physics.drag_tangential, 0.05);
+  EXPECT_EQ(config->physics.integrator, Integrator::kRk4);  // Kept.
+}
+
+TEST(AnimatSetTest, ModelFileMayNotNameWhatTheReportCompares) {
+  Result<std::vector<Animat>> set =
+      LoadAnimatSet(SetWithModelFile("physics { substeps: 4 }"));
+  ASSERT_FALSE(set.ok());
+  EXPECT_NE(set.status().message().find("physics.substeps"), std::string::npos)
+      << set.status().message();
+  EXPECT_FALSE(LoadAnimatSet(SetWithModelFile("physics { mass: -1 }")).ok());
 }
 
 }  // namespace
