@@ -36,6 +36,18 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (ok && !(std::isfinite(result.fitness()) && result.fitness() >= 0)) {
       std::abort();
     }
+    if (result.has_body()) {
+      const v1::BodySummary& b = result.body();
+      if (b.cells() < 0 || b.springs() < 0 || b.chambers() < 0 ||
+          b.skin_edges() < 0) {
+        std::abort();
+      }
+      if (!(std::isfinite(b.spread_major()) &&
+            std::isfinite(b.spread_minor()) && b.spread_minor() >= 0 &&
+            b.spread_major() >= b.spread_minor())) {
+        std::abort();
+      }
+    }
   }
   return 0;
 }

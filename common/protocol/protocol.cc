@@ -1,6 +1,7 @@
 #include "common/protocol/protocol.h"
 
 #include <cmath>
+#include <utility>
 
 #include <google/protobuf/io/coded_stream.h>
 #include <google/protobuf/io/zero_copy_stream_impl_lite.h>
@@ -75,6 +76,33 @@ Status ValidateResult(const v1::EvaluationResult& r) {
   }
   if (ok && !(std::isfinite(r.fitness()) && r.fitness() >= 0.0)) {
     return Status::InvalidArgument("fitness " + std::to_string(r.fitness()));
+  }
+  if (r.has_body()) {
+    const v1::BodySummary& b = r.body();
+    const std::pair<const char*, int32_t> counts[] = {
+        {"cells", b.cells()},
+        {"springs", b.springs()},
+        {"chambers", b.chambers()},
+        {"skin_edges", b.skin_edges()}};
+    for (const auto& [name, count] : counts) {
+      if (count < 0) {
+        return Status::InvalidArgument(std::string("body ") + name + " " +
+                                       std::to_string(count));
+      }
+    }
+    const std::pair<const char*, double> spreads[] = {
+        {"spread_major", b.spread_major()}, {"spread_minor", b.spread_minor()}};
+    for (const auto& [name, spread] : spreads) {
+      if (!(std::isfinite(spread) && spread >= 0.0)) {
+        return Status::InvalidArgument(std::string("body ") + name + " " +
+                                       std::to_string(spread));
+      }
+    }
+    if (b.spread_minor() > b.spread_major()) {
+      return Status::InvalidArgument(
+          "body spread_minor " + std::to_string(b.spread_minor()) +
+          " above spread_major " + std::to_string(b.spread_major()));
+    }
   }
   return Status::Ok();
 }

@@ -68,7 +68,9 @@ std::string Encode(v1::Envelope envelope);
 Result<v1::Envelope> Decode(std::string_view frame);
 
 // A result a master may record: a known status other than unspecified,
-// and a fitness present, finite and >= 0 exactly when the status is OK.
+// a fitness present, finite and >= 0 exactly when the status is OK, and,
+// if it carries a body summary, counts >= 0 and spreads finite with
+// spread_major >= spread_minor >= 0. The message names the first fault.
 Status ValidateResult(const v1::EvaluationResult& result);
 
 // 64-bit fingerprints of the deterministic serialisation (FNV-1a): the

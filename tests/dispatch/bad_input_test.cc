@@ -163,6 +163,37 @@ TEST_F(DispatchTest, MasterSurvivesGarbageAndKeepsServingCorrectWork) {
        },
        {"ignored an invalid result for individual 1",
         "status OK without a fitness"}},
+      {"a body with a negative chamber count",
+       [&] {
+         peer.Send(result_for_held([](v1::WorkResult* r) {
+           r->mutable_result()->mutable_body()->set_chambers(-3);
+         }));
+       },
+       {"ignored an invalid result for individual 1 from " + name,
+        "body chambers -3"}},
+      {"a body with a negative spring count",
+       [&] {
+         peer.Send(result_for_held([](v1::WorkResult* r) {
+           r->mutable_result()->mutable_body()->set_springs(-1);
+         }));
+       },
+       {"ignored an invalid result for individual 1", "body springs -1"}},
+      {"a body with a NaN spread",
+       [&] {
+         peer.Send(result_for_held([](v1::WorkResult* r) {
+           r->mutable_result()->mutable_body()->set_spread_minor(
+               std::numeric_limits<double>::quiet_NaN());
+         }));
+       },
+       {"ignored an invalid result for individual 1", "body spread_minor nan"}},
+      {"a body with an infinite spread",
+       [&] {
+         peer.Send(result_for_held([](v1::WorkResult* r) {
+           r->mutable_result()->mutable_body()->set_spread_major(
+               std::numeric_limits<double>::infinity());
+         }));
+       },
+       {"ignored an invalid result for individual 1", "body spread_major inf"}},
       {"an unknown status",
        [&] {
          peer.Send(result_for_held([](v1::WorkResult* r) {

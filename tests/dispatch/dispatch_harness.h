@@ -153,7 +153,8 @@ struct Individual {
   v1::EvaluationResult expected;  // The direct evaluation's.
 };
 
-// Checks every field of `actual` against `expected`, fitness bit for bit.
+// Checks every field of `actual` against `expected`, fitness and body
+// spreads bit for bit.
 inline void ExpectSameResult(const v1::EvaluationResult& actual,
                              const v1::EvaluationResult& expected,
                              uint64_t individual) {
@@ -171,6 +172,19 @@ inline void ExpectSameResult(const v1::EvaluationResult& actual,
   EXPECT_EQ(actual.cells(), expected.cells());
   EXPECT_EQ(actual.steps(), expected.steps());
   EXPECT_EQ(actual.state_hash(), expected.state_hash());
+  ASSERT_EQ(actual.has_body(), expected.has_body());
+  if (expected.has_body()) {
+    const v1::BodySummary& a = actual.body();
+    const v1::BodySummary& e = expected.body();
+    EXPECT_EQ(a.cells(), e.cells());
+    EXPECT_EQ(a.springs(), e.springs());
+    EXPECT_EQ(a.chambers(), e.chambers());
+    EXPECT_EQ(a.skin_edges(), e.skin_edges());
+    EXPECT_EQ(std::bit_cast<uint64_t>(a.spread_major()),
+              std::bit_cast<uint64_t>(e.spread_major()));
+    EXPECT_EQ(std::bit_cast<uint64_t>(a.spread_minor()),
+              std::bit_cast<uint64_t>(e.spread_minor()));
+  }
 }
 
 // The dispatcher's log lines, in order.

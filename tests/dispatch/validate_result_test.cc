@@ -1,0 +1,117 @@
+// protocol::ValidateResult: what the master refuses in a worker's result
+// before it can reach the lineage store, the body summary included.
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <string>
+
+#include "animat/v1/trace.pb.h"
+#include "common/evaluation/evaluator.h"
+#include "common/genome/genome_proto.h"
+#include "common/io/proto_file.h"
+#include "common/protocol/protocol.h"
+#include "tests/test_util.h"
+
+namespace animat {
+namespace {
+
+// An OK result with a plausible body.
+v1::EvaluationResult OkWithBody() {
+  v1::EvaluationResult r;
+  r.set_status(v1::EvaluationResult::OK);
+  r.set_fitness(0.5);
+  r.set_cells(32);
+  v1::BodySummary* b = r.mutable_body();
+  b->set_cells(32);
+  b->set_springs(75);
+  b->set_chambers(12);
+  b->set_skin_edges(18);
+  b->set_spread_major(2.5);
+  b->set_spread_minor(1.25);
+  return r;
+}
+
+std::string Refusal(const v1::EvaluationResult& r) {
+  const Status status = protocol::ValidateResult(r);
+  EXPECT_FALSE(status.ok());
+  return status.message();
+}
+
+TEST(ValidateResultTest, AcceptsAResultWithOrWithoutABody) {
+  v1::EvaluationResult r = OkWithBody();
+  EXPECT_TRUE(protocol::ValidateResult(r).ok());
+  r.clear_body();
+  EXPECT_TRUE(protocol::ValidateResult(r).ok());
+  // A straight chain: no chamber, no minor spread.
+  v1::EvaluationResult chain;
+  chain.set_status(v1::EvaluationResult::DEGENERATE_BODY);
+  chain.set_reason("no chamber: the body encloses no area");
+  chain.mutable_body()->set_cells(4);
+  chain.mutable_body()->set_springs(3);
+  chain.mutable_body()->set_spread_major(1.118);
+  EXPECT_TRUE(protocol::ValidateResult(chain).ok());
+}
+
+TEST(ValidateResultTest, AcceptsWhatAnEvaluationReports) {
+  v1::Genome message;
+  ASSERT_TRUE(
+      ReadProtoFile(testing::TestData("genomes/seed-1198.json"), &message)
+          .ok());
+  Result<Genome> genome = GenomeFromProto(message);
+  ASSERT_TRUE(genome.ok());
+  ModelConfig config;
+  config.evaluation.motion_steps = 50;
+  const v1::EvaluationResult r =
+      EvaluationResultToProto(Evaluate(*genome, config));
+  ASSERT_TRUE(r.has_body());
+  EXPECT_GT(r.body().chambers(), 0);
+  const Status status = protocol::ValidateResult(r);
+  EXPECT_TRUE(status.ok()) << status.ToString();
+}
+
+TEST(ValidateResultTest, RefusesNegativeCountsNamingThem) {
+  v1::EvaluationResult r = OkWithBody();
+  r.mutable_body()->set_cells(-1);
+  EXPECT_EQ(Refusal(r), "body cells -1");
+  r = OkWithBody();
+  r.mutable_body()->set_springs(-2);
+  EXPECT_EQ(Refusal(r), "body springs -2");
+  r = OkWithBody();
+  r.mutable_body()->set_chambers(std::numeric_limits<int32_t>::min());
+  EXPECT_EQ(Refusal(r), "body chambers -2147483648");
+  r = OkWithBody();
+  r.mutable_body()->set_skin_edges(-4);
+  EXPECT_EQ(Refusal(r), "body skin_edges -4");
+}
+
+TEST(ValidateResultTest, RefusesSpreadsThatAreNotFiniteNonNegativeAndOrdered) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  v1::EvaluationResult r = OkWithBody();
+  r.mutable_body()->set_spread_major(nan);
+  EXPECT_EQ(Refusal(r), "body spread_major nan");
+  r = OkWithBody();
+  r.mutable_body()->set_spread_major(inf);
+  EXPECT_EQ(Refusal(r), "body spread_major inf");
+  r = OkWithBody();
+  r.mutable_body()->set_spread_minor(-inf);
+  EXPECT_EQ(Refusal(r), "body spread_minor -inf");
+  r = OkWithBody();
+  r.mutable_body()->set_spread_minor(-0.5);
+  EXPECT_EQ(Refusal(r), "body spread_minor -0.500000");
+  r = OkWithBody();
+  r.mutable_body()->set_spread_minor(3.0);
+  EXPECT_EQ(Refusal(r),
+            "body spread_minor 3.000000 above spread_major 2.500000");
+}
+
+TEST(ValidateResultTest, ABadBodyIsRefusedWhateverTheStatus) {
+  v1::EvaluationResult r = OkWithBody();
+  r.set_status(v1::EvaluationResult::NUMERICAL_FAILURE);
+  r.clear_fitness();
+  r.mutable_body()->set_spread_major(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_EQ(Refusal(r), "body spread_major nan");
+}
+
+}  // namespace
+}  // namespace animat
