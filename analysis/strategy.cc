@@ -220,7 +220,8 @@ std::string Format(const char* format, double value) {
 std::string StrategySummary(const Strategy& s) {
   std::string text = std::string("strategy: ") + StrategyName(s.label);
   if (s.label == StrategyLabel::kOther) {
-    text += Format(" (best score %.3f below the threshold)", s.margin);
+    text += Format(" (no label reaches %.2f;", kStrategyThreshold);
+    text += Format(" the best is %.3f below)", s.margin);
   } else {
     text += Format(" (margin %.3f over the next label)", s.margin);
   }

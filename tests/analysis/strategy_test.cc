@@ -170,6 +170,14 @@ TEST(StrategyTest, TheSummaryNamesTheLabelAndEachTerm) {
   EXPECT_NE(text.find("stroke_asymmetry +0.400 (1.00)"), std::string::npos)
       << text;
   EXPECT_NE(text.find("lr_symmetry absent"), std::string::npos) << text;
+  StrategyFeatures f = HalfTurtle();
+  f.fb_lag = -0.002;
+  const std::string below = StrategySummary(ClassifyStrategy(f));
+  EXPECT_EQ(below.rfind("strategy: other (no label reaches 0.50; the best is "
+                        "0.285 below)",
+                        0),
+            0u)
+      << below;
 }
 
 }  // namespace
