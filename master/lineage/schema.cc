@@ -236,6 +236,37 @@ CREATE VIEW line_of_descent AS
   SELECT line.run_id, line.step, i.id, i.generation, i.operators, i.fitness
   FROM line JOIN individuals i ON i.run_id = line.run_id AND i.id = line.id;
 )sql",
+    // 3 -> 4: each evaluation that built a body records what kind of body
+    // it was (the cell count is already there); NULL for the others and
+    // for evaluations recorded before. The view individuals appends the
+    // new columns after schema version 3's, so queries read as before.
+    R"sql(
+ALTER TABLE evaluations ADD COLUMN springs INTEGER;
+ALTER TABLE evaluations ADD COLUMN chambers INTEGER;
+ALTER TABLE evaluations ADD COLUMN skin_edges INTEGER;
+ALTER TABLE evaluations ADD COLUMN spread_major REAL;
+ALTER TABLE evaluations ADD COLUMN spread_minor REAL;
+
+DROP VIEW line_of_descent;
+DROP VIEW individuals;
+CREATE VIEW individuals AS
+  SELECT b.run_id, b.id, b.generation, b.operators, b.genome, b.genome_hash,
+         b.elements, b.created_at, e.status, e.reason, e.fitness, e.cells,
+         e.steps, e.wall_seconds, e.worker, e.state_hash, e.evaluated_at,
+         e.springs, e.chambers, e.skin_edges, e.spread_major, e.spread_minor
+  FROM births b LEFT JOIN evaluations e
+    ON e.run_id = b.run_id AND e.id = b.id;
+
+CREATE VIEW line_of_descent AS
+  WITH RECURSIVE line (run_id, id, step) AS (
+    SELECT run_id, id, 0 FROM best
+    UNION ALL
+    SELECT line.run_id, p.parent, line.step + 1
+    FROM line JOIN parents p
+      ON p.run_id = line.run_id AND p.child = line.id AND p.position = 0)
+  SELECT line.run_id, line.step, i.id, i.generation, i.operators, i.fitness
+  FROM line JOIN individuals i ON i.run_id = line.run_id AND i.id = line.id;
+)sql",
 };
 
 constexpr int kKnown = static_cast<int>(std::size(kMigrations));

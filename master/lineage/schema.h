@@ -9,7 +9,7 @@
 namespace animat::lineage {
 
 // The schema this build writes (PRAGMA user_version).
-inline constexpr int kSchemaVersion = 3;
+inline constexpr int kSchemaVersion = 4;
 
 // Brings `db` from its user_version to `target` (tests ask for older
 // versions), one migration at a time, each in its own transaction. Refuses

@@ -266,7 +266,9 @@ Status Store::RecordEvaluations(int64_t run,
     Result<sql::Statement> insert = db_->Cached(
         "INSERT OR IGNORE INTO evaluations (run_id, id, status, reason,"
         " fitness, cells, steps, wall_seconds, worker, state_hash,"
-        " evaluated_at) SELECT ?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11"
+        " evaluated_at, springs, chambers, skin_edges, spread_major,"
+        " spread_minor) SELECT ?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11,"
+        " ?12, ?13, ?14, ?15, ?16"
         " WHERE EXISTS (SELECT 1 FROM births WHERE run_id = ?1 AND id = ?2)");
     if (!insert.ok()) return insert.status();
     const std::string now = UtcNow();
@@ -286,6 +288,17 @@ Status Store::RecordEvaluations(int64_t run,
           .Bind(9, e.worker)
           .Bind(10, Hex64(r.state_hash()))
           .Bind(11, now);
+      // The body, when the evaluation built one; NULL otherwise.
+      if (r.has_body()) {
+        const v1::BodySummary& b = r.body();
+        insert->Bind(12, static_cast<int64_t>(b.springs()))
+            .Bind(13, static_cast<int64_t>(b.chambers()))
+            .Bind(14, static_cast<int64_t>(b.skin_edges()))
+            .Bind(15, b.spread_major())
+            .Bind(16, b.spread_minor());
+      } else {
+        for (int column = 12; column <= 16; ++column) insert->BindNull(column);
+      }
       Status s = insert->Run();
       if (!s.ok()) return s;
     }

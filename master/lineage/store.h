@@ -56,6 +56,9 @@ struct NewIndividual {
 
 struct Evaluation {
   uint64_t id = 0;
+  // Recorded whole: status, fitness, ..., and the body summary when the
+  // result has one (the body columns are NULL otherwise). The caller has
+  // checked it (protocol::ValidateResult).
   v1::EvaluationResult result;
   double wall_seconds = 0;
   std::string worker;  // host:pid

@@ -40,7 +40,9 @@ run_state() {  # "running" or "finished"
 digest() {
   sqlite3 "file:$1?mode=ro" "
     SELECT id, generation, operators, hex(genome), status, reason,
-           quote(fitness), cells, steps, state_hash FROM individuals
+           quote(fitness), cells, steps, state_hash, springs, chambers,
+           skin_edges, quote(spread_major), quote(spread_minor)
+    FROM individuals
     ORDER BY id;
     SELECT * FROM parents ORDER BY child, position;
     SELECT generation, id, rank FROM members ORDER BY generation, id;

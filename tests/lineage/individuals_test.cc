@@ -3,6 +3,7 @@
 // Unevaluated, NextId.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -20,6 +21,7 @@ namespace {
 using ::animat::testing::FailedEvaluation;
 using ::animat::testing::IsHex16;
 using ::animat::testing::IsUtcStamp;
+using ::animat::testing::MakeBody;
 using ::animat::testing::MakeGenome;
 using ::animat::testing::MakeIndividual;
 using ::animat::testing::MakeRun;
@@ -243,6 +245,86 @@ TEST_F(IndividualsTest, RecordEvaluationsSetsEveryColumn) {
   EXPECT_FALSE(failed->fitness.has_value());
 }
 
+// The body summary of a result goes into the body columns, the spreads
+// bit for bit; a result without one (no body was built) leaves them NULL.
+TEST_F(IndividualsTest, RecordEvaluationsRecordsTheBodySummary) {
+  ASSERT_TRUE(
+      store_
+          ->AddIndividuals(run_, {MakeIndividual(0, 0), MakeIndividual(1, 0),
+                                  MakeIndividual(2, 0), MakeIndividual(3, 0)})
+          .ok());
+  Evaluation ok = OkEvaluation(0, 1.5);
+  *ok.result.mutable_body() = MakeBody(7);
+  // A chain: a body without a chamber, refused by min_chambers.
+  Evaluation chain = FailedEvaluation(1, v1::EvaluationResult::DEGENERATE_BODY);
+  chain.result.set_reason("no chamber: the body encloses no area");
+  *chain.result.mutable_body() = MakeBody(0);
+  chain.result.mutable_body()->set_spread_minor(0.0);
+  ASSERT_TRUE(
+      store_
+          ->RecordEvaluations(
+              run_, {ok, chain, FailedEvaluation(2),
+                     FailedEvaluation(3, v1::EvaluationResult::TOO_FEW_CELLS)})
+          .ok());
+
+  EXPECT_EQ(
+      Rows(*store_,
+           "SELECT id, status, cells, springs, chambers, skin_edges,"
+           " typeof(spread_major), typeof(spread_minor)"
+           " FROM individuals ORDER BY id"),
+      (Table{{"0", "ok", "32", "67", "7", "13", "real", "real"},
+             {"1", "degenerate_body", "1", "60", "0", "20", "real", "real"},
+             {"2", "non_viable", "1", "NULL", "NULL", "NULL", "null", "null"},
+             {"3", "too_few_cells", "1", "NULL", "NULL", "NULL", "null",
+              "null"}}));
+  Result<sql::Statement> spreads = store_->database().Prepare(
+      "SELECT spread_major, spread_minor FROM individuals WHERE id = ?");
+  ASSERT_TRUE(spreads.ok());
+  for (const Evaluation* e : {&ok, &chain}) {
+    spreads->Bind(1, static_cast<int64_t>(e->id));
+    Result<bool> row = spreads->Step();
+    ASSERT_TRUE(row.ok() && *row);
+    EXPECT_EQ(std::bit_cast<uint64_t>(spreads->Double(0)),
+              std::bit_cast<uint64_t>(e->result.body().spread_major()))
+        << "individual " << e->id;
+    EXPECT_EQ(std::bit_cast<uint64_t>(spreads->Double(1)),
+              std::bit_cast<uint64_t>(e->result.body().spread_minor()))
+        << "individual " << e->id;
+    spreads->Reset();
+  }
+}
+
+// What bodies evolved: the chambers of every evaluation, counted.
+TEST_F(IndividualsTest, ChambersGroupByCountsTheBodiesOfEachKind) {
+  std::vector<NewIndividual> made;
+  std::vector<Evaluation> results;
+  const int chambers[] = {3, 1, 3, 0, 5, 3, 1};
+  for (uint64_t id = 0; id < 10; ++id) {
+    made.push_back(MakeIndividual(id, 0));
+    if (id < 7) {
+      Evaluation e =
+          chambers[id] == 0
+              ? FailedEvaluation(id, v1::EvaluationResult::DEGENERATE_BODY)
+              : OkEvaluation(id, 0.5 * static_cast<double>(id));
+      *e.result.mutable_body() = MakeBody(chambers[id]);
+      results.push_back(std::move(e));
+    } else if (id < 9) {
+      results.push_back(FailedEvaluation(id));  // No body.
+    }                                           // 9 is pending.
+  }
+  ASSERT_TRUE(store_->AddIndividuals(run_, made).ok());
+  ASSERT_TRUE(store_->RecordEvaluations(run_, results).ok());
+  EXPECT_EQ(
+      Rows(*store_,
+           "SELECT chambers, COUNT(*) FROM individuals"
+           " GROUP BY chambers ORDER BY chambers"),
+      (Table{{"NULL", "3"}, {"0", "1"}, {"1", "2"}, {"3", "3"}, {"5", "1"}}));
+  EXPECT_EQ(Rows(*store_,
+                 "SELECT chambers, COUNT(*) FROM individuals"
+                 " WHERE status = 'ok' GROUP BY chambers ORDER BY chambers"),
+            (Table{{"1", "2"}, {"3", "3"}, {"5", "1"}}));
+}
+
 TEST_F(IndividualsTest, FirstEvaluationIsKept) {
   ASSERT_TRUE(
       store_->AddIndividuals(run_, {MakeIndividual(0, 0), MakeIndividual(1, 0)})
@@ -256,6 +338,7 @@ TEST_F(IndividualsTest, FirstEvaluationIsKept) {
   Evaluation again = OkEvaluation(0, 0.9);
   again.worker = "other:1";
   again.result.set_state_hash(1);
+  *again.result.mutable_body() = MakeBody(4);
   // A duplicate result (a lease that expired and came back twice) succeeds
   // and changes nothing, within one batch or in a later one.
   EXPECT_TRUE(store_->RecordEvaluations(run_, {again, again}).ok());

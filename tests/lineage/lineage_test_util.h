@@ -116,6 +116,19 @@ inline lineage::Evaluation OkEvaluation(uint64_t id, double fitness) {
   return e;
 }
 
+// A body summary that differs with `chambers`, with spreads that need all
+// 64 bits.
+inline v1::BodySummary MakeBody(int chambers) {
+  v1::BodySummary body;
+  body.set_cells(32);
+  body.set_springs(60 + chambers);
+  body.set_chambers(chambers);
+  body.set_skin_edges(20 - chambers);
+  body.set_spread_major(2.0 + 1.0 / 3.0);
+  body.set_spread_minor(0.1 * chambers);
+  return body;
+}
+
 // A failed evaluation (no fitness).
 inline lineage::Evaluation FailedEvaluation(
     uint64_t id,

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include <sqlite3.h>
+
 #include "master/lineage/schema.h"
 #include "master/lineage/sqlite.h"
 #include "master/lineage/store.h"
@@ -173,19 +175,56 @@ TEST(SchemaTest, ReopeningKeepsDataAndDoesNotMigrateAgain) {
   EXPECT_EQ(Value(**store, "SELECT COUNT(*) FROM individuals"), "1");
 }
 
+// The columns of `individuals` up to schema version 3, in their order,
+// each as text that keeps every bit (quote()).
+constexpr const char* kVersion3Columns =
+    "run_id, id, generation, operators, quote(genome), genome_hash,"
+    " elements, created_at, status, reason, quote(fitness), cells, steps,"
+    " quote(wall_seconds), worker, state_hash, evaluated_at";
+
+// The columns schema version 4 added, after those.
+const std::vector<std::string> kBodyColumns = {
+    "springs", "chambers", "skin_edges", "spread_major", "spread_minor"};
+
+// Every row of `query` on the file at `path`, opened read-only without
+// the store's code (which would migrate it); each column as text, "NULL"
+// for NULL.
+std::vector<std::vector<std::string>> RawRows(const std::string& path,
+                                              const std::string& query) {
+  std::vector<std::vector<std::string>> rows;
+  Result<std::unique_ptr<sql::Database>> db =
+      sql::Database::Open(path, /*read_only=*/true);
+  EXPECT_TRUE(db.ok()) << db.status().ToString();
+  if (!db.ok()) return rows;
+  const auto collect = [](void* out, int columns, char** values,
+                          char**) -> int {
+    std::vector<std::string> row;
+    for (int c = 0; c < columns; ++c) {
+      row.push_back(values[c] != nullptr ? values[c] : "NULL");
+    }
+    static_cast<std::vector<std::vector<std::string>>*>(out)->push_back(
+        std::move(row));
+    return 0;
+  };
+  char* error = nullptr;
+  if (sqlite3_exec((*db)->handle(), query.c_str(), collect, &rows, &error) !=
+      SQLITE_OK) {
+    ADD_FAILURE() << query << ": " << (error != nullptr ? error : "error");
+    sqlite3_free(error);
+  }
+  return rows;
+}
+
 // A store written by schema version 1 (individuals WITHOUT ROWID) or 2
 // (evaluations in the individuals table) is upgraded in place: every row
-// and column survives, read through the individuals view; the views
-// answer; births is a rowid table with the generation index and
-// evaluations a table of its own.
+// and column survives, read through the individuals view, and the body
+// columns are NULL; the views answer; births is a rowid table with the
+// generation index and evaluations a table of its own.
 TEST(SchemaTest, OlderStoresAreUpgradedKeepingEveryRow) {
   for (const int version : {1, 2}) {
     SCOPED_TRACE("from version " + std::to_string(version));
     TempStorePath file("v" + std::to_string(version));
-    const std::string columns =
-        "run_id, id, generation, operators, quote(genome), genome_hash,"
-        " elements, created_at, status, reason, quote(fitness), cells, steps,"
-        " quote(wall_seconds), worker, state_hash, evaluated_at";
+    const std::string columns = kVersion3Columns;
     {
       Result<std::unique_ptr<sql::Database>> db =
           sql::Database::Open(file.path());
@@ -251,7 +290,122 @@ TEST(SchemaTest, OlderStoresAreUpgradedKeepingEveryRow) {
     Result<std::vector<uint64_t>> pending = (*store)->Unevaluated(1);
     ASSERT_TRUE(pending.ok());
     EXPECT_EQ(*pending, std::vector<uint64_t>{1});
+    for (const std::string& column : kBodyColumns) {
+      EXPECT_EQ(Value(**store, "SELECT COUNT(*) FROM individuals WHERE " +
+                                   column + " IS NOT NULL"),
+                "0")
+          << column;
+    }
   }
+}
+
+// A store written by schema version 3 gains the body columns: NULL in
+// every row it held, after the columns it had, which read as before; the
+// queries refuse it until it is upgraded, naming the command that does.
+// Then results record their bodies in it.
+TEST(SchemaTest, Version3StoreGainsBodyColumnsNullInEveryOldRow) {
+  TempStorePath file("v3");
+  {
+    Result<std::unique_ptr<sql::Database>> db =
+        sql::Database::Open(file.path());
+    ASSERT_TRUE(db.ok()) << db.status().ToString();
+    ASSERT_TRUE(Migrate(**db, 3).ok());
+    const Status written = (*db)->Execute(
+        "INSERT INTO runs VALUES (1, 5, x'0a00', 'text', '00000000000000ff',"
+        " 'build', '2026-01-01T00:00:00.000Z', NULL, 'running');"
+        "INSERT INTO births VALUES"
+        " (1, 0, 0, 'random', x'0a0b0c', '0000000000000001', 3, 't0'),"
+        " (1, 1, 1, 'copy', x'0a0b0d', '0000000000000002', 3, 't1'),"
+        " (1, 2, 1, 'sign', x'0a0b0e', '0000000000000003', 3, 't2'),"
+        " (1, 3, 1, 'type', x'0a0b0f', '0000000000000004', 3, 't3');"
+        "INSERT INTO evaluations VALUES"
+        " (1, 0, 'ok', '', 0.1000000000000000055511151231257827, 32, 6600,"
+        "  0.25, 'h:1', '00000000000000aa', 'e0'),"
+        " (1, 2, 'ok', '', 2.5, 32, 6600, 0.5, 'h:2', '00000000000000bb',"
+        "  'e2'),"
+        " (1, 3, 'too_few_cells', 'too few', NULL, 1, 400, 0.01, 'h:2',"
+        "  '0000000000000000', 'e3');"
+        "INSERT INTO parents VALUES (1, 1, 0, 0), (1, 2, 0, 0), (1, 3, 0, 0);"
+        "INSERT INTO generations VALUES (1, 0, 1, 'g0', 'c0', 1, 0, 0, 0.1,"
+        "  0.1, 0.1);"
+        "INSERT INTO members VALUES (1, 0, 0, 0);");
+    ASSERT_TRUE(written.ok()) << written.ToString();
+  }
+  const std::vector<std::vector<std::string>> before =
+      RawRows(file.path(), std::string("SELECT ") + kVersion3Columns +
+                               " FROM individuals ORDER BY id");
+  ASSERT_EQ(before.size(), 4u);
+  std::vector<std::vector<std::string>> tables_before;
+  for (const char* table :
+       {"runs", "births", "parents", "generations", "members"}) {
+    for (std::vector<std::string>& row :
+         RawRows(file.path(),
+                 std::string("SELECT * FROM ") + table + " ORDER BY 1, 2, 3")) {
+      row.insert(row.begin(), table);
+      tables_before.push_back(std::move(row));
+    }
+  }
+
+  Result<std::unique_ptr<Store>> reader = Store::OpenForQueries(file.path());
+  ASSERT_FALSE(reader.ok());
+  EXPECT_TRUE(Contains(reader.status().message(), "schema version 3"))
+      << reader.status().message();
+  EXPECT_TRUE(Contains(reader.status().message(),
+                       "`animat lineage upgrade --db " + file.path() + "`"))
+      << reader.status().message();
+  EXPECT_EQ(UserVersion(file.path()), 3);
+
+  {
+    Result<std::unique_ptr<Store>> store = Store::Open(file.path());
+    ASSERT_TRUE(store.ok()) << store.status().ToString();
+    EXPECT_EQ(UserVersion(file.path()), kSchemaVersion);
+    EXPECT_EQ(Rows(**store, std::string("SELECT ") + kVersion3Columns +
+                                " FROM individuals ORDER BY id"),
+              before);
+    std::vector<std::vector<std::string>> tables_after;
+    for (const char* table :
+         {"runs", "births", "parents", "generations", "members"}) {
+      for (std::vector<std::string>& row :
+           RawRows(file.path(), std::string("SELECT * FROM ") + table +
+                                    " ORDER BY 1, 2, 3")) {
+        row.insert(row.begin(), table);
+        tables_after.push_back(std::move(row));
+      }
+    }
+    EXPECT_EQ(tables_after, tables_before);
+    // Version 3's columns first, in order, then the body's.
+    std::vector<std::vector<std::string>> names =
+        Rows(**store, "SELECT name FROM pragma_table_info('individuals')");
+    ASSERT_EQ(names.size(), 22u);
+    for (size_t c = 0; c < kBodyColumns.size(); ++c) {
+      EXPECT_EQ(names[17 + c][0], kBodyColumns[c]);
+    }
+    EXPECT_EQ(names[16][0], "evaluated_at");
+    EXPECT_EQ(Rows(**store,
+                   "SELECT id, springs, chambers, skin_edges, spread_major,"
+                   " spread_minor FROM individuals ORDER BY id"),
+              (std::vector<std::vector<std::string>>{
+                  {"0", "NULL", "NULL", "NULL", "NULL", "NULL"},
+                  {"1", "NULL", "NULL", "NULL", "NULL", "NULL"},
+                  {"2", "NULL", "NULL", "NULL", "NULL", "NULL"},
+                  {"3", "NULL", "NULL", "NULL", "NULL", "NULL"}}));
+    EXPECT_EQ(Value(**store, "SELECT id FROM best"), "2");
+    EXPECT_EQ(
+        Rows(**store, "SELECT step, id FROM line_of_descent ORDER BY step"),
+        (std::vector<std::vector<std::string>>{{"0", "2"}, {"1", "0"}}));
+
+    // The pending individual's result, recorded now, has its body.
+    Evaluation late = ::animat::testing::OkEvaluation(1, 0.75);
+    *late.result.mutable_body() = ::animat::testing::MakeBody(6);
+    ASSERT_TRUE((*store)->RecordEvaluations(1, {late}).ok());
+    EXPECT_EQ(
+        Rows(**store,
+             "SELECT chambers, COUNT(*) FROM individuals"
+             " GROUP BY chambers ORDER BY chambers"),
+        (std::vector<std::vector<std::string>>{{"NULL", "3"}, {"6", "1"}}));
+  }
+  Result<std::unique_ptr<Store>> upgraded = Store::OpenForQueries(file.path());
+  EXPECT_TRUE(upgraded.ok()) << upgraded.status().ToString();
 }
 
 // An individual of a realistic genome (about 1 kB) costs about its size on

@@ -19,6 +19,9 @@
 
 #include "animat/v1/evolution.pb.h"
 #include "animat/v1/genome.pb.h"
+#include "common/evaluation/evaluator.h"
+#include "common/evaluation/model_config.h"
+#include "common/genome/genome_proto.h"
 #include "common/io/proto_file.h"
 #include "master/lineage/schema.h"
 #include "master/lineage/sqlite.h"
@@ -329,10 +332,95 @@ TEST_F(EvolveCliTest, LineageAnswersAsTheStoreSays) {
   }
 }
 
-// A store written by schema version 2 (the same run, its rows copied into
-// a version-2 schema) is refused by the questions with a pointer to
+// The bytes of a "blob:<hex>" cell.
+std::string BlobBytes(const std::string& cell) {
+  std::string bytes;
+  for (size_t i = 5; i + 1 < cell.size(); i += 2) {
+    bytes += static_cast<char>(std::stoi(cell.substr(i, 2), nullptr, 16));
+  }
+  return bytes;
+}
+
+// A double as a "real:<bits>" cell.
+std::string RealBits(double value) {
+  char cell[32];
+  std::snprintf(
+      cell, sizeof(cell), "real:%016llx",
+      static_cast<unsigned long long>(std::bit_cast<uint64_t>(value)));
+  return cell;
+}
+
+// A real run records with every evaluation the body it built, as the
+// evaluation gives it: each individual's body columns are those of its
+// genome evaluated here again (NULL where no body was built), every
+// individual that swims has a body with a chamber, and the chambers
+// histogram of the store is that of the evaluations.
+TEST_F(EvolveCliTest, StoreRecordsTheBodyOfEveryEvaluation) {
+  TestRun run;
+  run.seed = 6;
+  run.generations = 2;
+  config_ = WriteConfig("run.txtpb", run);
+  db_ = Path("bodies.db");
+  Evolve(2);
+  if (HasFatalFailure()) return;
+
+  v1::RunConfig stored;
+  ASSERT_TRUE(stored.ParseFromString(
+      BlobBytes(QueryCell(db_, "SELECT config FROM runs"))));
+  ModelConfig model;
+  ASSERT_TRUE(ConfigFromProto(stored.model(), &model).ok());
+  const std::vector<SqlRow> rows =
+      QueryRows(db_,
+                "SELECT id, genome, status, springs, chambers, skin_edges,"
+                " spread_major, spread_minor FROM individuals ORDER BY id");
+  ASSERT_GT(rows.size(), 1000u);
+  std::map<std::string, int64_t> histogram;  // Chambers -> individuals.
+  int with_body = 0;
+  for (const SqlRow& row : rows) {
+    SCOPED_TRACE("individual " + row[0]);
+    v1::Genome message;
+    ASSERT_TRUE(message.ParseFromString(BlobBytes(row[1])));
+    Result<Genome> genome = GenomeFromProto(message);
+    ASSERT_TRUE(genome.ok()) << genome.status().ToString();
+    const EvaluationResult result = Evaluate(*genome, model);
+    ASSERT_EQ(row[2], EvalStatusName(result.status));
+    SqlRow expected(5, "NULL");
+    if (result.body) {
+      ++with_body;
+      expected = {std::to_string(result.body->springs),
+                  std::to_string(result.body->chambers),
+                  std::to_string(result.body->skin_edges),
+                  RealBits(result.body->spread_major),
+                  RealBits(result.body->spread_minor)};
+    }
+    EXPECT_EQ(SqlRow(row.begin() + 3, row.end()), expected);
+    ++histogram[expected[1]];
+  }
+  EXPECT_GT(with_body, run.population);
+
+  std::map<std::string, int64_t> stored_histogram;
+  for (const SqlRow& row :
+       QueryRows(db_,
+                 "SELECT chambers, COUNT(*) FROM individuals"
+                 " GROUP BY chambers")) {
+    stored_histogram[row[0]] = std::stoll(row[1]);
+  }
+  EXPECT_EQ(stored_histogram, histogram);
+  EXPECT_GT(QueryInt(db_,
+                     "SELECT COUNT(*) FROM individuals"
+                     " WHERE status = 'ok'"),
+            0);
+  EXPECT_EQ(QueryInt(db_,
+                     "SELECT COUNT(*) FROM individuals WHERE status = 'ok'"
+                     " AND (chambers IS NULL OR chambers < 1)"),
+            0);
+}
+
+// A store written by schema version 2 or 3 (the same run, its rows copied
+// into that version's schema) is refused by the questions with a pointer to
 // `animat lineage upgrade`, which brings it to this build's schema: then it
-// holds what the original holds and answers the same.
+// holds what the original holds, but for the body columns, which are NULL,
+// and answers the same.
 TEST_F(EvolveCliTest, UpgradeBringsAnOlderStoreToThisSchema) {
   TestRun run;
   run.seed = 23;
@@ -341,50 +429,84 @@ TEST_F(EvolveCliTest, UpgradeBringsAnOlderStoreToThisSchema) {
   db_ = Path("current.db");
   Evolve(2);
   if (HasFatalFailure()) return;
-  const std::string old_db = Path("old.db");
-  {
-    Result<std::unique_ptr<sql::Database>> db = sql::Database::Open(old_db);
-    ASSERT_TRUE(db.ok()) << db.status().ToString();
-    ASSERT_TRUE(lineage::Migrate(**db, 2).ok());
-    const Status copied = (*db)->Execute(
-        "ATTACH DATABASE '" + db_ +
-        "' AS current;"
-        "INSERT INTO runs SELECT * FROM current.runs;"
-        "INSERT INTO individuals SELECT * FROM current.individuals;"
-        "INSERT INTO parents SELECT * FROM current.parents;"
-        "INSERT INTO generations SELECT * FROM current.generations;"
-        "INSERT INTO members SELECT * FROM current.members;"
-        "DETACH DATABASE current;");
-    ASSERT_TRUE(copied.ok()) << copied.ToString();
+  // The columns of individuals up to version 3, and those version 4 added.
+  const std::string old_columns =
+      "run_id, id, generation, operators, genome, genome_hash, elements,"
+      " created_at, status, reason, fitness, cells, steps, wall_seconds,"
+      " worker, state_hash, evaluated_at";
+  const std::string body_columns =
+      "springs, chambers, skin_edges, spread_major, spread_minor";
+  ASSERT_GT(QueryInt(db_,
+                     "SELECT COUNT(*) FROM individuals WHERE chambers"
+                     " IS NOT NULL"),
+            0);
+  const std::map<int, std::string> copy_individuals = {
+      {2, "INSERT INTO individuals SELECT " + old_columns +
+              " FROM current.individuals;"},
+      {3,
+       "INSERT INTO births SELECT * FROM current.births;"
+       "INSERT INTO evaluations SELECT run_id, id, status, reason, fitness,"
+       " cells, steps, wall_seconds, worker, state_hash, evaluated_at"
+       " FROM current.evaluations;"}};
+  for (const auto& [version, copy] : copy_individuals) {
+    SCOPED_TRACE("schema version " + std::to_string(version));
+    const std::string old_db =
+        Path(std::string("v") + std::to_string(version) + ".db");
+    {
+      Result<std::unique_ptr<sql::Database>> db = sql::Database::Open(old_db);
+      ASSERT_TRUE(db.ok()) << db.status().ToString();
+      ASSERT_TRUE(lineage::Migrate(**db, version).ok());
+      const Status copied = (*db)->Execute(
+          "ATTACH DATABASE '" + db_ +
+          "' AS current;"
+          "INSERT INTO runs SELECT * FROM current.runs;" +
+          copy +
+          "INSERT INTO parents SELECT * FROM current.parents;"
+          "INSERT INTO generations SELECT * FROM current.generations;"
+          "INSERT INTO members SELECT * FROM current.members;"
+          "DETACH DATABASE current;");
+      ASSERT_TRUE(copied.ok()) << copied.ToString();
+    }
+    std::string out, err;
+    EXPECT_NE(Animat({"lineage", "best", "--db", old_db}, &out, &err), 0);
+    EXPECT_NE(err.find("schema version " + std::to_string(version)),
+              std::string::npos)
+        << err;
+    EXPECT_NE(err.find("animat lineage upgrade --db " + old_db),
+              std::string::npos)
+        << err;
+
+    ASSERT_EQ(Animat({"lineage", "upgrade", "--db", old_db}, &out, &err), 0)
+        << err;
+    EXPECT_EQ(out, old_db + ": upgraded from schema version " +
+                       std::to_string(version) + " to " +
+                       std::to_string(lineage::kSchemaVersion) + "\n");
+    for (const char* table : {"runs", "parents", "generations", "members"}) {
+      const std::string query =
+          std::string("SELECT * FROM ") + table + " ORDER BY 1, 2, 3";
+      EXPECT_EQ(QueryRows(old_db, query), QueryRows(db_, query)) << table;
+    }
+    const std::string individuals =
+        "SELECT " + old_columns + " FROM individuals ORDER BY 1, 2, 3";
+    EXPECT_EQ(QueryRows(old_db, individuals), QueryRows(db_, individuals));
+    EXPECT_EQ(QueryInt(old_db,
+                       "SELECT COUNT(*) FROM individuals WHERE"
+                       " COALESCE(" +
+                           body_columns + ") IS NOT NULL"),
+              0);
+    std::string best_old, best_current;
+    ASSERT_EQ(Animat({"lineage", "best", "--db", old_db}, &best_old, &err), 0)
+        << err;
+    ASSERT_EQ(Animat({"lineage", "best", "--db", db_}, &best_current, &err), 0)
+        << err;
+    EXPECT_EQ(best_old, best_current);
+
+    ASSERT_EQ(Animat({"lineage", "upgrade", "--db", old_db}, &out, &err), 0)
+        << err;
+    EXPECT_EQ(out, old_db + ": already at schema version " +
+                       std::to_string(lineage::kSchemaVersion) + "\n");
   }
   std::string out, err;
-  EXPECT_NE(Animat({"lineage", "best", "--db", old_db}, &out, &err), 0);
-  EXPECT_NE(err.find("schema version 2"), std::string::npos) << err;
-  EXPECT_NE(err.find("animat lineage upgrade --db " + old_db),
-            std::string::npos)
-      << err;
-
-  ASSERT_EQ(Animat({"lineage", "upgrade", "--db", old_db}, &out, &err), 0)
-      << err;
-  EXPECT_EQ(out, old_db + ": upgraded from schema version 2 to " +
-                     std::to_string(lineage::kSchemaVersion) + "\n");
-  for (const char* table :
-       {"runs", "individuals", "parents", "generations", "members"}) {
-    const std::string query =
-        std::string("SELECT * FROM ") + table + " ORDER BY 1, 2, 3";
-    EXPECT_EQ(QueryRows(old_db, query), QueryRows(db_, query)) << table;
-  }
-  std::string best_old, best_current;
-  ASSERT_EQ(Animat({"lineage", "best", "--db", old_db}, &best_old, &err), 0)
-      << err;
-  ASSERT_EQ(Animat({"lineage", "best", "--db", db_}, &best_current, &err), 0)
-      << err;
-  EXPECT_EQ(best_old, best_current);
-
-  ASSERT_EQ(Animat({"lineage", "upgrade", "--db", old_db}, &out, &err), 0)
-      << err;
-  EXPECT_EQ(out, old_db + ": already at schema version " +
-                     std::to_string(lineage::kSchemaVersion) + "\n");
   const std::string missing = Path("missing.db");
   EXPECT_NE(Animat({"lineage", "upgrade", "--db", missing}, &out, &err), 0);
   EXPECT_NE(err.find(missing + ": no such lineage store"), std::string::npos)

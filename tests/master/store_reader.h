@@ -192,7 +192,8 @@ inline StoreContents ReadStoreContents(const std::string& path) {
       &contents.runs);
   read(
       "SELECT run_id, id, generation, operators, genome, genome_hash,"
-      " elements, status, reason, fitness, cells, steps, state_hash"
+      " elements, status, reason, fitness, cells, steps, state_hash,"
+      " springs, chambers, skin_edges, spread_major, spread_minor"
       " FROM individuals ORDER BY run_id, id",
       &contents.individuals);
   read(
