@@ -39,26 +39,36 @@ double Membership(const StrategyRule& rule, double value) {
   return m > 0 ? std::min(m, 1.0) : 0.0;
 }
 
+// p^(1/n) for p in (0, 1] by Newton's method from 1, which only
+// decreases (converged for any p above 1e-200 with n <= 5): +, * and /
+// alone, so the same bits on every machine, unlike libm's pow, exp, log.
+double Root(double p, int n) {
+  double x = 1;
+  for (int iteration = 0; iteration < 500; ++iteration) {
+    double power = 1;  // x^(n−1).
+    for (int k = 1; k < n; ++k) power *= x;
+    const double next = ((n - 1) * x + p / power) / n;
+    if (!(next < x)) break;
+    x = next;
+  }
+  return x;
+}
+
 StrategyScore Score(StrategyLabel label, const StrategyFeatures& features) {
   StrategyScore score;
   score.label = label;
   const std::vector<StrategyRule>& rules = StrategyRules(label);
-  double log_sum = 0;
-  bool zero = rules.empty();
+  double product = rules.empty() ? 0.0 : 1.0;
   for (const StrategyRule& rule : rules) {
     StrategyTerm term;
     term.feature = rule.feature;
     term.value = FeatureValue(features, rule.feature);
     if (term.value) term.membership = Membership(rule, *term.value);
-    if (term.membership > 0) {
-      log_sum += std::log(term.membership);
-    } else {
-      zero = true;
-    }
+    product *= term.membership;
     score.terms.push_back(term);
   }
   score.score =
-      zero ? 0.0 : std::exp(log_sum / static_cast<double>(rules.size()));
+      product > 0 ? Root(product, static_cast<int>(rules.size())) : 0.0;
   return score;
 }
 
