@@ -38,6 +38,16 @@ std::string FitnessText(const std::optional<double>& fitness) {
   return text;
 }
 
+// The body's lines, as `animat simulate` prints them (none for a store
+// that did not record it).
+void PrintBody(const v1::BodySummary& body) {
+  std::printf(
+      "cells: %d\nsprings: %d\nchambers: %d\nskin_edges: %d\n"
+      "spread_major: %.17g\nspread_minor: %.17g\n",
+      body.cells(), body.springs(), body.chambers(), body.skin_edges(),
+      body.spread_major(), body.spread_minor());
+}
+
 template <typename Body>
 int WithRun(const Options& o, Body body) {
   Result<std::unique_ptr<lineage::Store>> store =
@@ -55,6 +65,7 @@ int Best(const Options& o) {
     std::printf("id: %llu\ngeneration: %d\nfitness: %s\noperators: %s\n",
                 static_cast<unsigned long long>(best->id), best->generation,
                 FitnessText(best->fitness).c_str(), best->operators.c_str());
+    if (best->body) PrintBody(*best->body);
     return 0;
   });
 }

@@ -31,6 +31,13 @@ void PrintResult(const EvaluationResult& r) {
   if (r.state_hash != 0) {
     std::printf("state_hash: %016" PRIx64 "\n", r.state_hash);
   }
+  if (r.body) {
+    std::printf(
+        "springs: %d\nchambers: %d\nskin_edges: %d\nspread_major: %.17g\n"
+        "spread_minor: %.17g\n",
+        r.body->springs, r.body->chambers, r.body->skin_edges,
+        r.body->spread_major, r.body->spread_minor);
+  }
 }
 
 int Run(const Options& o) {

@@ -29,7 +29,8 @@ Result<int64_t> ChooseRun(Store& store, std::optional<int64_t> run) {
 
 Result<Summary> Best(Store& store, int64_t run) {
   Result<sql::Statement> select = store.database().Prepare(
-      "SELECT b.id, i.generation, i.operators, i.status, i.fitness"
+      "SELECT b.id, i.generation, i.operators, i.status, i.fitness, i.cells,"
+      " i.springs, i.chambers, i.skin_edges, i.spread_major, i.spread_minor"
       " FROM best b JOIN individuals i ON i.run_id = b.run_id AND i.id = b.id"
       " WHERE b.run_id = ?");
   if (!select.ok()) return select.status();
@@ -46,6 +47,15 @@ Result<Summary> Best(Store& store, int64_t run) {
   best.operators = select->Text(2);
   best.status = select->Text(3);
   best.fitness = select->Double(4);
+  if (!select->IsNull(6)) {
+    v1::BodySummary& body = best.body.emplace();
+    body.set_cells(static_cast<int32_t>(select->Int(5)));
+    body.set_springs(static_cast<int32_t>(select->Int(6)));
+    body.set_chambers(static_cast<int32_t>(select->Int(7)));
+    body.set_skin_edges(static_cast<int32_t>(select->Int(8)));
+    body.set_spread_major(select->Double(9));
+    body.set_spread_minor(select->Double(10));
+  }
   return best;
 }
 

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "animat/v1/trace.pb.h"
 #include "common/base/status.h"
 #include "master/lineage/store.h"
 
@@ -24,12 +25,16 @@ struct Summary {
   std::string status;
   std::optional<double> fitness;
   int distance = 0;  // Generations of descent, for ancestors.
+  // Its body, when its evaluation built one and the store recorded it
+  // (schema version 4 on); filled by Best only.
+  std::optional<v1::BodySummary> body;
 };
 
 // The run's id: `run` if given, else the latest run. kNotFound if none.
 Result<int64_t> ChooseRun(Store& store, std::optional<int64_t> run);
 
-// The individual with the highest fitness (ties: the lowest id).
+// The individual with the highest fitness (ties: the lowest id), with its
+// body.
 Result<Summary> Best(Store& store, int64_t run);
 
 // Every ancestor of `id` (parents, their parents, ...), each once with its

@@ -95,6 +95,45 @@ TEST(CliTest, SimulatePrintsStatusAndFitness) {
   EXPECT_EQ(lines[3], "steps: 800");
 }
 
+// The body's summary follows the other lines, with the values --json
+// gives; a genome that builds no body prints none.
+TEST(CliTest, SimulatePrintsTheBodyItBuilt) {
+  const std::string genome = testing::TestData("genomes/seed-1198.json");
+  const Outcome text =
+      Animat("simulate --genome " + genome + " --config " + ShortConfig());
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  const Outcome json = Animat("simulate --json --genome " + genome +
+                              " --config " + ShortConfig());
+  ASSERT_EQ(json.exit_code, 0) << json.output;
+  v1::EvaluationResult result;
+  ASSERT_TRUE(ParseProto(json.output, ProtoFormat::kJson, &result).ok())
+      << json.output;
+  ASSERT_TRUE(result.has_body());
+  EXPECT_EQ(result.body().cells(), 32);
+  EXPECT_GT(result.body().chambers(), 0);
+  char spreads[128];
+  std::snprintf(spreads, sizeof(spreads),
+                "spread_major: %.17g\nspread_minor: %.17g\n",
+                result.body().spread_major(), result.body().spread_minor());
+  const std::string body =
+      "springs: " + std::to_string(result.body().springs()) +
+      "\nchambers: " + std::to_string(result.body().chambers()) +
+      "\nskin_edges: " + std::to_string(result.body().skin_edges()) + "\n" +
+      spreads;
+  ASSERT_GE(text.output.size(), body.size());
+  EXPECT_EQ(text.output.substr(text.output.size() - body.size()), body)
+      << text.output;
+  EXPECT_EQ(text.output.find("state_hash: "),
+            text.output.find("springs: ") - 29)
+      << text.output;  // Right after the state hash.
+
+  const Outcome failed =
+      Animat("simulate --genome " +
+             testing::TestData("genomes/seed-2-too-few-cells.json"));
+  ASSERT_EQ(failed.exit_code, 0) << failed.output;
+  EXPECT_EQ(failed.output.find("chambers"), std::string::npos) << failed.output;
+}
+
 TEST(CliTest, SimulateOfAFailureHasAReasonAndNoFitness) {
   const Outcome run =
       Animat("simulate --genome " +
@@ -115,6 +154,7 @@ TEST(CliTest, SimulateJsonIsAnEvaluationResult) {
       << run.output;
   EXPECT_EQ(result.status(), v1::EvaluationResult::TOO_FEW_CELLS);
   EXPECT_EQ(result.cells(), 1);
+  EXPECT_FALSE(result.has_body());  // Development built none.
 }
 
 TEST(CliTest, SimulateWritesACompleteTrace) {

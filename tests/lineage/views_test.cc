@@ -154,6 +154,29 @@ TEST_F(ViewsTest, BestQuery) {
   EXPECT_EQ(best->operators, "crossover,coordinate");
   EXPECT_EQ(best->status, "ok");
   EXPECT_EQ(best->fitness, 5.0);
+  EXPECT_FALSE(best->body.has_value());  // Its result had none.
+}
+
+TEST_F(ViewsTest, BestQueryGivesTheBodyRecorded) {
+  const int64_t other = MakeRun(*store_, 8);
+  ASSERT_TRUE(
+      store_
+          ->AddIndividuals(other, {MakeIndividual(0, 0), MakeIndividual(1, 0)})
+          .ok());
+  Evaluation best_one = OkEvaluation(1, 4.0);
+  *best_one.result.mutable_body() = ::animat::testing::MakeBody(9);
+  ASSERT_TRUE(
+      store_->RecordEvaluations(other, {OkEvaluation(0, 1.0), best_one}).ok());
+  Result<Summary> best = Best(*store_, other);
+  ASSERT_TRUE(best.ok()) << best.status().ToString();
+  EXPECT_EQ(best->id, 1u);
+  ASSERT_TRUE(best->body.has_value());
+  EXPECT_EQ(best->body->cells(), 32);  // The evaluation's cells.
+  EXPECT_EQ(best->body->springs(), 69);
+  EXPECT_EQ(best->body->chambers(), 9);
+  EXPECT_EQ(best->body->skin_edges(), 11);
+  EXPECT_EQ(best->body->spread_major(), 2.0 + 1.0 / 3.0);
+  EXPECT_EQ(best->body->spread_minor(), 0.1 * 9);
 }
 
 TEST_F(ViewsTest, BestQueryWithoutAnyFitnessIsNotFound) {

@@ -193,6 +193,19 @@ TEST_F(EvolveCliTest, LineageAnswersAsTheStoreSays) {
   EXPECT_EQ(fields["generation"], best[1]) << out;
   EXPECT_EQ(RealCell(fields["fitness"]), best[2]) << out;
   EXPECT_EQ(fields["operators"], best[3]) << out;
+  // Its body, as recorded.
+  const SqlRow body =
+      QueryRows(db_,
+                "SELECT cells, springs, chambers, skin_edges, spread_major,"
+                " spread_minor FROM individuals WHERE id = " +
+                    best[0])
+          .at(0);
+  EXPECT_EQ(fields["cells"], body[0]) << out;
+  EXPECT_EQ(fields["springs"], body[1]) << out;
+  EXPECT_EQ(fields["chambers"], body[2]) << out;
+  EXPECT_EQ(fields["skin_edges"], body[3]) << out;
+  EXPECT_EQ(RealCell(fields["spread_major"]), body[4]) << out;
+  EXPECT_EQ(RealCell(fields["spread_minor"]), body[5]) << out;
 
   // ancestors: every ancestor once, at its shortest distance, nearest
   // first then by id; computed here from the parents table.
@@ -300,6 +313,11 @@ TEST_F(EvolveCliTest, LineageAnswersAsTheStoreSays) {
   EXPECT_EQ(fields["cells"], recorded[2]) << out;
   EXPECT_EQ(fields["steps"], recorded[3]) << out;
   EXPECT_EQ(fields["state_hash"], recorded[4]) << out;
+  EXPECT_EQ(fields["springs"], body[1]) << out;
+  EXPECT_EQ(fields["chambers"], body[2]) << out;
+  EXPECT_EQ(fields["skin_edges"], body[3]) << out;
+  EXPECT_EQ(RealCell(fields["spread_major"]), body[4]) << out;
+  EXPECT_EQ(RealCell(fields["spread_minor"]), body[5]) << out;
 
   // export: one row per individual in id order, with its parents in order.
   const std::string csv = Path("phylogeny.csv");
@@ -499,7 +517,11 @@ TEST_F(EvolveCliTest, UpgradeBringsAnOlderStoreToThisSchema) {
         << err;
     ASSERT_EQ(Animat({"lineage", "best", "--db", db_}, &best_current, &err), 0)
         << err;
-    EXPECT_EQ(best_old, best_current);
+    // The same but for the body, which the old store did not record.
+    EXPECT_EQ(best_current.rfind(best_old, 0), 0u) << best_current;
+    EXPECT_EQ(Lines(best_old).size(), 4u) << best_old;
+    EXPECT_NE(best_current.find("\nchambers: "), std::string::npos)
+        << best_current;
 
     ASSERT_EQ(Animat({"lineage", "upgrade", "--db", old_db}, &out, &err), 0)
         << err;
