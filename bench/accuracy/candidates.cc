@@ -74,7 +74,7 @@ Candidate ReferenceCandidate() {
 }
 
 Candidate DefaultCandidate() {
-  return Make("SEMI_IMPLICIT_EULER", 1, "EXPLICIT", "FLOAT", "NATIVE");
+  return Make("RK4", 1, "EXPLICIT", "FLOAT", "NATIVE");
 }
 
 std::vector<Candidate> CandidateSet() {

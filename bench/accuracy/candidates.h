@@ -41,8 +41,8 @@ struct Candidate {
 
 // RK4, 16 sub-steps, explicit drag, double, native.
 Candidate ReferenceCandidate();
-// The default configuration: semi-implicit Euler, 1 sub-step, explicit
-// drag, float network arithmetic, native ("E1f").
+// The default configuration: RK4, 1 sub-step, explicit drag, float network
+// arithmetic, native ("R1f").
 Candidate DefaultCandidate();
 
 // Every native integrator x sub-steps {1, 2, 4} x drag update {explicit,

@@ -28,7 +28,9 @@ struct PhysicsParams {
   double dt = 0.05;                // Time per simulation step.
   double actuation_max = 0.2;      // A_max, in [0, 0.5).
   double min_rest_fraction = 0.1;  // Rest length never below this * L0.
-  Integrator integrator = Integrator::kSemiImplicitEuler;
+  // RK4 with one sub-step: the cheapest setting that meets MODEL §7's
+  // accuracy rule (docs/accuracy.md, docs/model.md).
+  Integrator integrator = Integrator::kRk4;
   int substeps = 1;  // Physics sub-steps per simulation step.
   DragUpdate drag_update = DragUpdate::kExplicit;
   PhysicsBackend backend = PhysicsBackend::kNative;

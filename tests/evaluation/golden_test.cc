@@ -52,6 +52,40 @@ TEST_P(GoldenTest, FitnessBitsAndFinalStateAreFixed) {
   EXPECT_EQ(r.cells, 32);
 }
 
+// The default configuration of MODEL v2: the chamber rule and RK4 with one
+// sub-step (MODEL §7's rule). Recorded when RK4 became the default.
+class GoldenDefaultTest : public ::testing::TestWithParam<Golden> {};
+
+TEST_P(GoldenDefaultTest, FitnessBitsAndFinalStateAreFixed) {
+  const Golden& golden = GetParam();
+  v1::Genome message;
+  ASSERT_TRUE(
+      ReadProtoFile(testing::TestData(std::string("genomes/") + golden.genome),
+                    &message)
+          .ok());
+  Result<Genome> genome = GenomeFromProto(message);
+  ASSERT_TRUE(genome.ok());
+  ModelConfig config;
+  config.grn.precision = golden.precision;
+  const EvaluationResult r = Evaluate(*genome, config);
+  ASSERT_EQ(r.status, EvalStatus::kOk) << r.reason;
+  ASSERT_TRUE(r.fitness.has_value());
+  EXPECT_EQ(std::bit_cast<uint64_t>(*r.fitness), golden.fitness_bits)
+      << "fitness " << *r.fitness;
+  EXPECT_EQ(r.state_hash, golden.state_hash) << std::hex << r.state_hash;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Genomes, GoldenDefaultTest,
+    ::testing::Values(Golden{"seed-1198.json", Precision::kFloat,
+                             0x3fbecf821b14a83dull, 0x2278ae92b7c1e8d8ull},
+                      Golden{"seed-1198.json", Precision::kDouble,
+                             0x3fbecf7f71000c0full, 0x0b4791c522ae6497ull},
+                      Golden{"seed-139.json", Precision::kFloat,
+                             0x3e242dad5851e621ull, 0xd88d6d84e51586f4ull},
+                      Golden{"seed-139.json", Precision::kDouble,
+                             0x3e243d8f0199d074ull, 0x379475141da9ba33ull}));
+
 // Under MODEL v2 the chamber rule changes nothing for a body with chambers:
 // the same bits as with min_chambers 0.
 TEST(GoldenTest, ChamberRuleLeavesChamberedBodiesBitIdentical) {

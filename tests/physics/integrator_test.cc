@@ -193,6 +193,7 @@ TEST(IntegratorTest, OneSubStepOfEulerIsTheModelStep) {
   // substeps = 1 divides dt by 1: exactly v += F/m dt; x += v dt.
   const Problem p = SmoothProblem(3);
   PhysicsParams params;
+  params.integrator = Integrator::kSemiImplicitEuler;
   SoftBody body(p.body, params);
   body.SetActuation(p.expand, p.contract);
   MotionState stepped = p.start;
@@ -287,6 +288,7 @@ TEST(StableDragTest, HundredfoldDragNeverReversesTheVelocity) {
   // velocity changes sign in one step); the stable one only slows down.
   const double v0 = 2.0;
   PhysicsParams params;
+  params.integrator = Integrator::kSemiImplicitEuler;
   params.drag_normal = 100.0;
   params.drag_tangential = 0.5;
 

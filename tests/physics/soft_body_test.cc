@@ -51,6 +51,8 @@ double Shoelace(const std::vector<Vec2>& p, const std::vector<int>& walk) {
 
 PhysicsParams NoDrag() {
   PhysicsParams p;
+  p.integrator = Integrator::kSemiImplicitEuler;  // These tests are MODEL
+                                                  // §7's written step.
   p.drag_normal = 0.0;
   p.drag_tangential = 0.0;
   return p;
@@ -565,6 +567,7 @@ DragRun TranslateEdge(const PhysicsParams& params, double d, Vec2 direction,
 
 TEST(SoftBodyTest, EdgeMovingAcrossItselfSlowsAsQuadraticNormalDragPredicts) {
   PhysicsParams params;
+  params.integrator = Integrator::kSemiImplicitEuler;
   params.mass = 2.0;  // M = 4, D = d_N l = 2: D / M = 0.5.
   params.drag_normal = 1.0;
   params.drag_tangential = 0.005;
@@ -590,6 +593,7 @@ TEST(SoftBodyTest, EdgeMovingAcrossItselfSlowsAsQuadraticNormalDragPredicts) {
 TEST(SoftBodyTest,
      EdgeMovingAlongItselfSlowsAsQuadraticTangentialDragPredicts) {
   PhysicsParams params;
+  params.integrator = Integrator::kSemiImplicitEuler;
   params.mass = 1.0;  // M = 2, D = d_T l = 0.5: D / M = 0.25.
   params.drag_tangential = 0.25;
   params.drag_normal = 200 * 0.25;  // d_N = 200 d_T [paper]; unused here.

@@ -73,6 +73,7 @@ MotionState AtRest(const Body& body) {
 PhysicsParams BulletParams() {
   PhysicsParams params;
   params.backend = PhysicsBackend::kBullet;
+  params.integrator = Integrator::kSemiImplicitEuler;  // Bullet's own.
   return params;
 }
 
@@ -319,6 +320,7 @@ TEST(BulletStepperTest, ConfigRejectsOtherIntegratorsWithBullet) {
 TEST(BulletStepperTest, ConfigRejectsStableDragWithBullet) {
   v1::PhysicsConfig message;
   message.set_backend(v1::PhysicsConfig::BULLET);
+  message.set_integrator(v1::PhysicsConfig::SEMI_IMPLICIT_EULER);
   message.set_drag_update(v1::PhysicsConfig::STABLE);
   PhysicsParams params;
   const Status status = PhysicsParamsFromProto(message, &params);
@@ -374,6 +376,7 @@ TEST(BulletStepperTest, EvaluationWithBulletMatchesNative) {
   const Genome genome = LoadGenome("seed-1198.json");
   ModelConfig config;
   config.evaluation.motion_steps = 300;
+  config.physics.integrator = Integrator::kSemiImplicitEuler;
   const EvaluationResult native = Evaluate(genome, config);
   config.physics.backend = PhysicsBackend::kBullet;
   const EvaluationResult bullet = Evaluate(genome, config);
