@@ -46,9 +46,10 @@ if [[ ! -x "$bin/animat" ]] || ! cmp -s build/bin/animat "$bin/animat"; then
 fi
 
 runs=()
-for drag in $drags; do
-  tangential="$(awk -v d="$drag" 'BEGIN { printf "%.10g", d / 200 }')"
-  for seed in $seeds; do
+# Seeds outer, drags inner: a partial replication covers every drag.
+for seed in $seeds; do
+  for drag in $drags; do
+    tangential="$(awk -v d="$drag" 'BEGIN { printf "%.10g", d / 200 }')"
     name="dn${drag}-seed${seed}"
     config="$out/$name.txtpb"
     # The paper's setup with this run's seed and drag.
