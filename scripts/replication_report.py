@@ -1,0 +1,284 @@
+#!/usr/bin/env python3
+"""Reads the replication's stores (scripts/replicate.sh) and writes what
+docs/results.md reports: per run the fitness over the generations, the best,
+its body and strategy; per drag the fitness curves; the bests' genomes with
+their model configuration; Fig. 4-style panels and a replay page for one best
+of each strategy found; and the measurements behind the claim-by-claim table.
+
+  scripts/replication_report.py [--out out/replication] [--dest docs/results]
+      [--animat out/replication/bin/animat] [--top 10]
+
+Only Python's standard library; the simulator work is done by `animat`
+(lineage, analyze, figure, render). Writes DEST/replication.json (every number)
+and DEST/replication.md (the tables), and the figures, genomes and pages
+beside them.
+"""
+
+import argparse
+import json
+import math
+import os
+import re
+import sqlite3
+import statistics
+import subprocess
+import sys
+
+RUN_NAME = re.compile(r"^dn([0-9.]+)-seed([0-9]+)\.db$")
+
+
+def run(cmd, **kwargs):
+    """Runs a command, failing loudly with its output."""
+    result = subprocess.run(cmd, capture_output=True, text=True, **kwargs)
+    if result.returncode != 0:
+        sys.exit(f"failed ({result.returncode}): {' '.join(cmd)}\n"
+                 f"{result.stdout}{result.stderr}")
+    return result.stdout
+
+
+def try_run(cmd, problems):
+    """Runs a command; on failure records its message and returns None."""
+    result = subprocess.run(cmd, capture_output=True, text=True)
+    if result.returncode != 0:
+        problems.append(f"{' '.join(cmd)}: {result.stderr.strip()}")
+        return None
+    return result.stdout
+
+
+def model_text(config_text):
+    """The `model { ... }` block of a RunConfig's text, as a Config's text."""
+    start = config_text.index("model {")
+    depth = 0
+    for i in range(start, len(config_text)):
+        if config_text[i] == "{":
+            depth += 1
+        elif config_text[i] == "}":
+            depth -= 1
+            if depth == 0:
+                body = config_text[config_text.index("{", start) + 1:i]
+                return "\n".join(line[2:] if line.startswith("  ") else line
+                                 for line in body.strip("\n").split("\n")) + "\n"
+    raise ValueError("no model block")
+
+
+def store_summary(path):
+    db = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
+    db.row_factory = sqlite3.Row
+    run_row = db.execute(
+        "SELECT run_id, config_text FROM runs ORDER BY run_id DESC LIMIT 1"
+    ).fetchone()
+    run_id = run_row["run_id"]
+    stats = [dict(r) for r in db.execute(
+        "SELECT generation, size, evaluated, failed, best_id, best_fitness, "
+        "mean_fitness, median_fitness FROM generation_statistics "
+        "WHERE run_id = ? AND completed_at IS NOT NULL ORDER BY generation",
+        (run_id,))]
+    last = stats[-1]["generation"]
+    best = dict(db.execute(
+        "SELECT id, generation, fitness, cells, springs, chambers, skin_edges, "
+        "spread_major, spread_minor FROM individuals WHERE run_id = ? AND id = ?",
+        (run_id, stats[-1]["best_id"])).fetchone())
+    members = [dict(r) for r in db.execute(
+        "SELECT m.rank, i.id, i.status, i.fitness, i.cells, i.chambers "
+        "FROM members m JOIN individuals i ON i.run_id = m.run_id "
+        "AND i.id = m.id WHERE m.run_id = ? AND m.generation = ? "
+        "ORDER BY m.rank", (run_id, last))]
+    chains = db.execute(
+        "SELECT COUNT(*) FROM individuals WHERE run_id = ? AND status = 'ok' "
+        "AND chambers = 0", (run_id,)).fetchone()[0]
+    tried = db.execute(
+        "SELECT COUNT(*) FROM individuals WHERE run_id = ? AND generation = 0",
+        (run_id,)).fetchone()[0]
+    statuses = {r[0]: r[1] for r in db.execute(
+        "SELECT status, COUNT(*) FROM individuals WHERE run_id = ? "
+        "AND generation > 0 AND status IS NOT NULL GROUP BY status",
+        (run_id,))}
+    db.close()
+    return {
+        "run_id": run_id,
+        "model_text": model_text(run_row["config_text"]),
+        "generations": last + 1,
+        "stats": stats,
+        "best": best,
+        "members": members,
+        "ok_chains": chains,
+        "initial_tried": tried,
+        "offspring_statuses": statuses,
+    }
+
+
+def analyze(animat, db, individual):
+    out = run([animat, "analyze", "--db", db, "--individual", str(individual),
+               "-o", "-"])
+    a = json.loads(out)
+    strategy = a.get("strategy", {})
+    return {
+        "label": strategy.get("label", "OTHER").lower(),
+        "margin": strategy.get("margin", 0.0),
+        "scores": strategy.get("score", {}),
+        "features": strategy.get("features", {}),
+        "period_steps": a.get("periodSteps", a.get("period_steps")),
+        "amplitude_mean": a.get("amplitudeMean", a.get("amplitude_mean")),
+        "amplitude_max": a.get("amplitudeMax", a.get("amplitude_max")),
+        "distance_per_cycle": a.get("distancePerCycle",
+                                    a.get("distance_per_cycle")),
+        "fitness": a.get("fitness"),
+    }
+
+
+def spearman(xs, ys):
+    """Spearman's rank correlation (average ranks for ties)."""
+    def ranks(v):
+        order = sorted(range(len(v)), key=lambda i: v[i])
+        r = [0.0] * len(v)
+        i = 0
+        while i < len(order):
+            j = i
+            while j + 1 < len(order) and v[order[j + 1]] == v[order[i]]:
+                j += 1
+            for k in range(i, j + 1):
+                r[order[k]] = (i + j) / 2.0
+            i = j + 1
+        return r
+    rx, ry = ranks(xs), ranks(ys)
+    mx, my = statistics.mean(rx), statistics.mean(ry)
+    num = sum((a - mx) * (b - my) for a, b in zip(rx, ry))
+    den = math.sqrt(sum((a - mx) ** 2 for a in rx) *
+                    sum((b - my) ** 2 for b in ry))
+    return num / den if den > 0 else float("nan")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--out", default="out/replication")
+    parser.add_argument("--dest", default="docs/results")
+    parser.add_argument("--animat", default=None)
+    parser.add_argument("--top", type=int, default=10,
+                        help="members of each run's last generation analysed "
+                        "for amplitude against frequency")
+    args = parser.parse_args()
+    animat = args.animat or os.path.join(args.out, "bin", "animat")
+    os.makedirs(os.path.join(args.dest, "bests"), exist_ok=True)
+
+    runs = []
+    for name in sorted(os.listdir(args.out)):
+        m = RUN_NAME.match(name)
+        if not m:
+            continue
+        path = os.path.join(args.out, name)
+        summary = store_summary(path)
+        summary.update(name=name[:-3], drag=float(m.group(1)),
+                       drag_text=m.group(1), seed=int(m.group(2)), db=path)
+        runs.append(summary)
+    runs.sort(key=lambda r: (r["drag"], r["seed"]))
+    if not runs:
+        sys.exit(f"no stores dnD-seedS.db in {args.out}")
+
+    # The bests: genome, model configuration, analysis.
+    for r in runs:
+        best = r["best"]
+        stem = os.path.join(args.dest, "bests", f"{r['name']}-{best['id']}")
+        run([animat, "lineage", "genome", str(best["id"]), "--db", r["db"],
+             "-o", stem + ".json"])
+        with open(stem + ".config.txtpb", "w") as f:
+            f.write("# proto-file: proto/animat/v1/config.proto\n"
+                    "# proto-message: animat.v1.Config\n"
+                    f"# The model of run {r['name']} (docs/results.md).\n")
+            f.write(r["model_text"])
+        r["best_genome"] = stem + ".json"
+        r["best_analysis"] = analyze(animat, r["db"], best["id"])
+        # Amplitude against frequency over the fittest members.
+        members = [m for m in r["members"] if m["status"] == "ok"][:args.top]
+        points = []
+        for m in members:
+            a = analyze(animat, r["db"], m["id"])
+            if a["period_steps"] and a["amplitude_mean"] is not None:
+                points.append({"id": m["id"], "fitness": m["fitness"],
+                               "frequency": 1.0 / a["period_steps"],
+                               "amplitude": a["amplitude_mean"],
+                               "label": a["label"]})
+        r["top_members"] = points
+        print(f"{r['name']}: best {best['fitness']:.3f} "
+              f"({r['best_analysis']['label']}), {r['generations']} "
+              "generations", file=sys.stderr)
+
+    # Fitness curves, one figure per drag.
+    for drag in sorted({r["drag_text"] for r in runs}, key=float):
+        dbs = [x for r in runs if r["drag_text"] == drag
+               for x in ("--db", r["db"])]
+        run([animat, "figure", "fitness", *dbs, "-o",
+             os.path.join(args.dest, f"fitness-dn{drag}.svg")])
+
+    # One best of each strategy: the fittest best with that label.
+    shown = {}
+    for r in sorted(runs, key=lambda r: -r["best"]["fitness"]):
+        label = r["best_analysis"]["label"]
+        if label not in shown:
+            shown[label] = r
+    problems = []
+    for label, r in shown.items():
+        base = os.path.join(args.dest, f"{label}-{r['name']}")
+        ident = ["--db", r["db"], "--individual", str(r["best"]["id"])]
+        for kind in ("strip", "activity", "cells"):
+            try_run([animat, "figure", kind, *ident, "-o", f"{base}-{kind}.svg"],
+                    problems)
+        try_run([animat, "render", *ident, "--every", "10", "-o",
+                 base + ".html"], problems)
+
+    # Amplitude against frequency, pooled over the runs' fittest members.
+    pooled = [p for r in runs for p in r["top_members"]]
+    trade = {
+        "members": len(pooled),
+        "spearman_amplitude_frequency": spearman(
+            [p["amplitude"] for p in pooled], [p["frequency"] for p in pooled])
+        if len(pooled) > 2 else None,
+        "amplitude_median": statistics.median(p["amplitude"] for p in pooled)
+        if pooled else None,
+        "amplitude_max": max((p["amplitude"] for p in pooled), default=None),
+    }
+
+    summary = {"runs": [{k: v for k, v in r.items()
+                         if k not in ("members", "db")} for r in runs],
+               "strategy_figures": {k: v["name"] for k, v in shown.items()},
+               "amplitude_frequency": trade,
+               "figure_problems": problems}
+    with open(os.path.join(args.dest, "replication.json"), "w") as f:
+        json.dump(summary, f, indent=1, sort_keys=True)
+
+    # The tables.
+    lines = ["| run | d_N | seed | generations | random genomes tried | best at 0 "
+             "| best (id) | mean | median | cells | springs | chambers | skin "
+             "| spreads | strategy (margin) |",
+             "|---|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:"
+             "|---|---|"]
+    for r in runs:
+        s0, sl, b = r["stats"][0], r["stats"][-1], r["best"]
+        a = r["best_analysis"]
+        lines.append(
+            f"| {r['name']} | {r['drag_text']} | {r['seed']} | "
+            f"{r['generations']} | {r['initial_tried']:,} | "
+            f"{s0['best_fitness']:.2f} | **{b['fitness']:.2f}** ({b['id']}) | "
+            f"{sl['mean_fitness']:.2f} | {sl['median_fitness']:.2f} | "
+            f"{b['cells']} | {b['springs']} | {b['chambers']} | "
+            f"{b['skin_edges']} | {b['spread_major']:.2f}, "
+            f"{b['spread_minor']:.2f} | {a['label']} ({a['margin']:.2f}) |")
+    lines.append("")
+    lines.append("| run | cells of the ok members of the last generation |")
+    lines.append("|---|---|")
+    for r in runs:
+        counts = {}
+        for m in r["members"]:
+            if m["status"] == "ok":
+                counts[m["cells"]] = counts.get(m["cells"], 0) + 1
+        text = ", ".join(f"{c}: {n}" for c, n in
+                         sorted(counts.items(), key=lambda kv: -kv[0]))
+        lines.append(f"| {r['name']} | {text} |")
+    with open(os.path.join(args.dest, "replication.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    print(json.dumps(trade), file=sys.stderr)
+    for problem in problems:
+        print("not drawn: " + problem, file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
