@@ -1,11 +1,11 @@
 // Cell activity as the paper defines it (Brainless Bodies, Fig. 4.2): the
 // absolute change from the previous step of what the cell does to its
-// springs' rest lengths, |Δ(e − c)| (MODEL §7), here per simulation step:
+// springs' rest lengths, |Δ(e − c)| (model §7.2), here per simulation step:
 // between frames k − 1 and k of a recording, |a(k) − a(k−1)| / stride with
 // a = e − c. With one frame per step (stride 1) this is exactly the
 // paper's quantity; a coarser recording gives the mean rate over each
 // interval. Units: actuation (e − c, dimensionless) per step; at most 0.1
-// (e and c each move at most Δt = 0.05 per step, MODEL §3).
+// (e and c each move at most Δt = 0.05 per step, model §3.1).
 //
 // Pure functions; thread-safe.
 #ifndef ANIMAT_ANALYSIS_ACTIVITY_H_

@@ -59,7 +59,7 @@ struct BodyAxes {
 };
 
 // Less movement than this (radii) is rounding noise, not motion (the
-// evolution's threshold for initial genomes, MODEL §9).
+// evolution's threshold for initial genomes, docs/model.md §9.3).
 inline constexpr double kMinDistance = 1e-6;
 
 // A cell's mean position this close to an axis (radii) is on the axis:

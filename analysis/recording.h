@@ -27,7 +27,7 @@ struct Spring {
 struct Recording {
   int cells = 0;
   double dt = 0.05;            // Model time per simulation step.
-  double actuation_max = 0.2;  // A_max (MODEL §7).
+  double actuation_max = 0.2;  // A_max (docs/model.md §7.2).
   int stride = 1;              // Simulation steps between two frames.
   std::vector<int> steps;      // Motion step of each frame, increasing.
   // Frame-major: value of cell i in frame k at [k * cells + i].
@@ -41,7 +41,7 @@ struct Recording {
     return position[static_cast<size_t>(frame) * cells + cell];
   }
   // e − c: the cell's term in its springs' rest lengths, which are
-  // max(0.1, 1 + A_max·(a_i + a_j))·L0 with a = e − c (MODEL §7).
+  // max(0.1, 1 + A_max·(a_i + a_j))·L0 with a = e − c (model §7.2).
   double actuation(int frame, int cell) const {
     const size_t i = static_cast<size_t>(frame) * cells + cell;
     return expand[i] - contract[i];

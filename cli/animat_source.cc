@@ -29,7 +29,7 @@ void AddAnimatSourceOptions(CLI::App* sub, AnimatSource* source) {
   sub->add_option("--genome", source->genome,
                   "Genome file (.json, .txtpb) to develop and simulate");
   sub->add_option("--config", source->config,
-                  "Configuration file (default: MODEL.md's for --genome, "
+                  "Configuration file (default: docs/model.md's for --genome, "
                   "the run's for --db)");
   sub->add_option("--db", source->db, "Lineage store holding --individual");
   sub->add_option("--individual", source->individual, "Individual id in --db");

@@ -94,7 +94,7 @@ Command AddGrnCommand(CLI::App& app) {
       ->check(CLI::Range(0, 100000000))
       ->required();
   sub->add_option("--config", options->config,
-                  "Configuration file (defaults: MODEL.md)");
+                  "Configuration file (defaults: docs/model.md)");
   return [options] { return Run(*options); };
 }
 

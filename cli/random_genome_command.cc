@@ -33,9 +33,9 @@ Command AddRandomGenomeCommand(CLI::App& app) {
   auto options = std::make_shared<Options>();
   CLI::App* sub = app.add_subcommand(
       "random-genome",
-      "Write a random genome (MODEL §9): UNITS regulatory units of one P and "
-      "one G element, never split by an S element, plus one S element per "
-      "input and output channel");
+      "Write a random genome (docs/model.md §9.3): UNITS regulatory units of "
+      "one P and one G element, never split by an S element, plus one S "
+      "element per input and output channel");
   sub->add_option("--seed", options->seed, "Run seed")->required();
   sub->add_option("--individual", options->individual,
                   "Individual number: one seed gives a stream of genomes")

@@ -154,7 +154,7 @@ Command AddRenderCommand(CLI::App& app) {
   sub->add_option("--run", o->run, "The run of --db (default: the latest)")
       ->needs(db);
   sub->add_option("--config", o->config,
-                  "Configuration file (default: MODEL.md's, or the run's "
+                  "Configuration file (default: docs/model.md's, or the run's "
                   "for --db)")
       ->excludes(trace);
   sub->add_option("--every", o->every,

@@ -41,7 +41,7 @@ int Run(const Options& o) {
     if (!format.ok()) return Fail(format.status().message());
   }
 
-  const EvaluationParams checks;  // Bound and interval of MODEL §8.
+  const EvaluationParams checks;  // Bound and interval of docs/model.md §8.3.
   SoftBody body(scene->body, scene->params);
   body.SetActuation(scene->expand, scene->contract);
   std::unique_ptr<MotionStepper> bullet;

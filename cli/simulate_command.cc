@@ -88,7 +88,7 @@ Command AddSimulateCommand(CLI::App& app) {
   sub->add_option("--genome", options->genome, "Genome file (.json, .txtpb)")
       ->required();
   sub->add_option("--config", options->config,
-                  "Configuration file (defaults: MODEL.md)");
+                  "Configuration file (defaults: docs/model.md)");
   sub->add_option("--trace", options->trace,
                   "Write a trace: config, development snapshots, body, "
                   "motion frames and result (.json, .txtpb, .binpb)");

@@ -3,7 +3,7 @@
 // (green).
 //
 // A cell's springs have rest length max(0.1, 1 + A_max·(e_i + e_j − c_i −
-// c_j))·L0 (MODEL §7), so the cell lengthens them while e − c rises and
+// c_j))·L0 (model §7.2), so the cell lengthens them while e − c rises and
 // shortens them while it falls. The rate is the change of e − c between two
 // recorded frames divided by the steps between them. Pure functions;
 // thread-safe.
@@ -20,7 +20,7 @@ enum class Actuation { kNeutral, kExpanding, kContracting };
 
 // A cell is neutral while |Δ(e − c)| per step stays below this: 1/1000 of
 // the fastest change possible (e and c each move by at most 2·Δt = 0.1 per
-// step, MODEL §3). Measured: the cells of the sample genome change by
+// step, model §3.1). Measured: the cells of the sample genome change by
 // 3e-4–4e-3 per step; those of a quickstart run's best by up to 4e-3.
 inline constexpr double kDefaultNeutralRate = 2e-4;
 

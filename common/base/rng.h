@@ -18,7 +18,7 @@ namespace animat {
 // What a stream is for. The numbers are part of the determinism contract
 // (a stored run replays only if they stay): never renumber, only append.
 enum class StreamPurpose : uint32_t {
-  kRandomGenome = 1,  // Initial genomes (MODEL §9).
+  kRandomGenome = 1,  // Initial genomes (docs/model.md §9.3).
   kSelection = 2,     // Tournaments choosing an offspring's parents.
   kVariation = 3,     // Whether an offspring is made by crossover.
   kCrossover = 4,     // Crossover points.

@@ -38,7 +38,7 @@ constexpr double Dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
 // z component of the 3-D cross product: > 0 when b is counter-clockwise
 // from a.
 constexpr double Cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
-// Euclidean length as sqrt(x*x + y*y) (MODEL §2: not hypot).
+// Euclidean length as sqrt(x*x + y*y) (model §2.2: not hypot).
 inline double Length(Vec2 a) { return std::sqrt(a.x * a.x + a.y * a.y); }
 inline bool IsFinite(Vec2 a) {
   return std::isfinite(a.x) && std::isfinite(a.y);

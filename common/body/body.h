@@ -1,5 +1,5 @@
 // The soft body built from the cell centres at the end of development
-// (MODEL §6): springs on the Gabriel graph, pressurised chambers on its
+// (docs/model.md §6): springs on the Gabriel graph, pressurised chambers on its
 // bounded faces, and the skin on its outer face.
 //
 // A Body is an immutable description (rest shape); the running state of a
@@ -56,7 +56,7 @@ struct BodySummary {
 
 BodySummary SummarizeBody(const Body& body);
 
-// MODEL §6 (v2): a body must enclose area. Returns "" when `summary` has at
+// model §6.5 (v2): a body must enclose area. Returns "" when `summary` has at
 // least `min_chambers` chambers, else the reason the evaluation fails
 // ("no chamber: the body encloses no area" when it has none).
 std::string ChamberShortfall(const BodySummary& summary, int min_chambers);

@@ -1,4 +1,4 @@
-// Development of an embryo from one cell (MODEL §4).
+// Development of an embryo from one cell (docs/model.md §4).
 //
 // A Development owns the embryo, its network state and its morphogen
 // field; the evaluation continues with them after development (signals,
@@ -37,7 +37,7 @@ enum class DevelopmentStatus {
   kNumericalFailure,  // A non-finite value or a runaway coordinate.
 };
 
-// The numerical check of MODEL §4 and §8 during development: positions
+// The numerical check of model §4.4 and §8.3 during development: positions
 // and radii must stay finite and every coordinate within max_coordinate
 // (radii). Checked after the mechanics of every interval-th step, before a
 // late division is reported, and at the end.

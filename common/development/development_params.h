@@ -1,4 +1,4 @@
-// Constants of development and signalling (MODEL §4, §5), and their
+// Constants of development and signalling (docs/model.md §4, §5), and their
 // configuration messages.
 #ifndef ANIMAT_COMMON_DEVELOPMENT_DEVELOPMENT_PARAMS_H_
 #define ANIMAT_COMMON_DEVELOPMENT_DEVELOPMENT_PARAMS_H_

@@ -1,4 +1,4 @@
-// Maternal and endogenous morphogens (MODEL §5).
+// Maternal and endogenous morphogens (docs/model.md §5).
 //
 // MorphogenField keeps, for every cell, the recent history of its
 // morphogen-making nodes' levels, and turns it into the signal M each cell

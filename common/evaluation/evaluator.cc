@@ -51,7 +51,7 @@ bool CheckDue(int step, int last, int interval) {
 template <typename S>
 EvaluationResult RunModel(const Network& network, const ModelConfig& config,
                           EvaluationObserver* observer) {
-  // Development (MODEL §4, §5).
+  // Development (docs/model.md §4, §5).
   DevelopmentT<S> development(network, config.grn, config.development,
                               config.signals);
   typename DevelopmentT<S>::Observer on_step;
@@ -78,14 +78,14 @@ EvaluationResult RunModel(const Network& network, const ModelConfig& config,
                      steps);
   }
 
-  // Body (MODEL §6).
+  // Body (model §6).
   Result<Body> body = BuildBody(embryo.position, embryo.radius);
   if (!body.ok()) {
     return Failure(EvalStatus::kDegenerateBody,
                    "degenerate body: " + body.status().message(), cells, steps);
   }
   const BodySummary summary = SummarizeBody(*body);
-  // A body must enclose area (MODEL §6, v2).
+  // A body must enclose area (model §6.5, v2).
   const std::string shortfall = ChamberShortfall(summary, ev.min_chambers);
   if (!shortfall.empty()) {
     EvaluationResult failure =
@@ -100,7 +100,8 @@ EvaluationResult RunModel(const Network& network, const ModelConfig& config,
                                               OutputChannel::kContract};
   development.RestrictTo(network.NodesReaching(kMotionOutputs));
 
-  // Positional information frozen at its end-of-development values (§5).
+  // Positional information frozen at its end-of-development values
+  // (model §5.3).
   GrnBatchT<S>& grn = development.grn();
   MorphogenFieldT<S>& field = development.field();
   for (int cell = 0; cell < cells; ++cell) {
@@ -132,7 +133,7 @@ EvaluationResult RunModel(const Network& network, const ModelConfig& config,
                            contract);
   }
 
-  // Equilibration: network stopped, velocities damped (§8).
+  // Equilibration: network stopped, velocities damped (model §8.2).
   for (int step = 1; step <= ev.equilibration_steps; ++step) {
     stepper.Step(&state);
     for (Vec2& v : state.velocity) v = v * ev.equilibration_damping;
@@ -154,7 +155,7 @@ EvaluationResult RunModel(const Network& network, const ModelConfig& config,
     }
   }
 
-  // Motion: network running (§7, §8).
+  // Motion: network running (model §7.7, §8.1).
   for (Vec2& v : state.velocity) v = Vec2{};
   const Vec2 start = CentreOfMass(state);
   if (observer) {

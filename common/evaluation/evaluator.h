@@ -1,4 +1,4 @@
-// One evaluation of a genome (MODEL §8): network, development, body,
+// One evaluation of a genome (docs/model.md §8): network, development, body,
 // equilibration, motion, fitness.
 //
 // Evaluate is a pure function of its arguments: the same genome and config
@@ -24,7 +24,7 @@ namespace animat {
 
 enum class EvalStatus {
   kOk,
-  kNonViable,         // No input-to-output path (MODEL §2).
+  kNonViable,         // No input-to-output path (model §2.5).
   kLateDivision,      // A division at or after last_division_step.
   kTooFewCells,       // Fewer than min_cells cells.
   kDegenerateBody,    // Coincident centres or no usable spring graph.

@@ -1,5 +1,5 @@
 // The whole model configuration (animat.v1.Config) as plain structs with
-// MODEL.md's defaults, and its conversion from and to protobuf.
+// docs/model.md's defaults, and its conversion from and to protobuf.
 #ifndef ANIMAT_COMMON_EVALUATION_MODEL_CONFIG_H_
 #define ANIMAT_COMMON_EVALUATION_MODEL_CONFIG_H_
 
@@ -13,14 +13,14 @@
 
 namespace animat {
 
-// The evaluation schedule and failure checks (MODEL §8).
+// The evaluation schedule and failure checks (model §8).
 struct EvaluationParams {
   int equilibration_steps = 200;       // Network stopped.
   double equilibration_damping = 0.9;  // v *= this after each such step.
   int motion_steps = 6000;             // Network running.
   double max_coordinate = 1e6;         // Beyond: numerical failure.
   int check_interval = 100;            // Steps between state checks.
-  int min_chambers = 1;  // Fewer chambers: a degenerate body (MODEL §6).
+  int min_chambers = 1;  // Fewer chambers: a degenerate body (model §6.5).
 };
 
 struct ModelConfig {

@@ -1,4 +1,4 @@
-// The genome: an ordered list of elements (MODEL §1).
+// The genome: an ordered list of elements (docs/model.md §1).
 //
 // Plain value types. A Genome made by GenomeFromProto or RandomGenome is
 // valid (see ValidateGenome); code that builds one by hand should validate

@@ -1,4 +1,4 @@
-// Random genomes for the initial population (MODEL §9).
+// Random genomes for the initial population (docs/model.md §9).
 //
 // Deterministic: the genome is a pure function of the stream's key.
 #ifndef ANIMAT_COMMON_GENOME_RANDOM_GENOME_H_

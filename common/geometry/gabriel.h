@@ -1,4 +1,4 @@
-// The Gabriel graph of a point set, made plane (MODEL §6).
+// The Gabriel graph of a point set, made plane (docs/model.md §6).
 //
 // Pure functions on caller-owned spans; thread-safe. O(n^3) in the number
 // of points, which is at most a few dozen cells.
@@ -13,7 +13,7 @@
 namespace animat {
 
 // Points closer than this are coincident: development separates them and
-// a body that still has them fails (MODEL §4, §6).
+// a body that still has them fails (model §4.3, §6.4).
 inline constexpr double kCoincidentDistance = 1e-9;
 
 // An undirected edge between point indices a < b.
@@ -24,7 +24,7 @@ struct IndexEdge {
 };
 
 // True when p lies strictly inside the circle with diameter a-b, computed
-// exactly as MODEL §6 writes it: (p - a) . (p - b) < 0 in double.
+// exactly as model §6.1 writes it: (p - a) . (p - b) < 0 in double.
 bool InsideDiametralCircle(Vec2 p, Vec2 a, Vec2 b);
 
 // Twice the signed area of triangle a, b, c: > 0 when counter-clockwise.

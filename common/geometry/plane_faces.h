@@ -1,4 +1,4 @@
-// Faces of a connected plane graph with straight edges (MODEL §6).
+// Faces of a connected plane graph with straight edges (docs/model.md §6).
 //
 // Pure function; thread-safe. O(E * degree) after sorting neighbours.
 #ifndef ANIMAT_COMMON_GEOMETRY_PLANE_FACES_H_

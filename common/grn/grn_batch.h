@@ -1,5 +1,5 @@
 // The network dynamics of every cell of an embryo, advanced together
-// (MODEL §3).
+// (docs/model.md §3).
 //
 // State is stored node-major with the cells of one node contiguous, so one
 // weight updates all cells in a vectorisable loop; results do not depend on

@@ -1,5 +1,5 @@
 // Constants of the genome-to-network map and the network dynamics
-// (MODEL §2, §3), and their configuration message.
+// (docs/model.md §2, §3), and their configuration message.
 #ifndef ANIMAT_COMMON_GRN_GRN_PARAMS_H_
 #define ANIMAT_COMMON_GRN_GRN_PARAMS_H_
 

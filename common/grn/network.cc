@@ -14,7 +14,8 @@ double Distance(const Element& a, const Element& b) {
   return std::sqrt(dx * dx + dy * dy);
 }
 
-// MODEL §2: G factors bind P and S_OUT regions; S_IN factors bind P only.
+// docs/model.md §2.3: G factors bind P and S_OUT regions; S_IN factors bind
+// P only.
 bool Compatible(const Element& factor, const Element& region) {
   if (factor.IsG()) return true;
   return factor.type == ElementType::kSIn && region.type == ElementType::kP;
@@ -47,7 +48,7 @@ Network Network::Build(const Genome& genome, const GrnParams& params) {
   const std::vector<Element>& el = genome.elements;
   const int n = static_cast<int>(el.size());
 
-  // Parse into nodes (MODEL §2).
+  // Parse into nodes (model §2.1).
   int i = 0;
   while (i < n) {
     const ElementType type = el[i].type;

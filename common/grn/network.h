@@ -1,7 +1,7 @@
-// The gene regulatory network a genome encodes (MODEL §2).
+// The gene regulatory network a genome encodes (docs/model.md §2).
 //
 // A Network is immutable after Build and may be shared by any number of
-// threads. It holds the nodes in MODEL's node order, the binding graph used
+// threads. It holds the nodes in the model's node order, the binding graph used
 // for the viability check, and the weights the dynamics (GrnBatch) use.
 #ifndef ANIMAT_COMMON_GRN_NETWORK_H_
 #define ANIMAT_COMMON_GRN_NETWORK_H_
@@ -52,7 +52,7 @@ struct Viability {
   std::string reason;  // Why not, when !viable.
 };
 
-// w(f, r) of MODEL §2: sign(f) * sign(r) * weight_max * exp(-d /
+// w(f, r) of model §2.2: sign(f) * sign(r) * weight_max * exp(-d /
 // decay_length) when d < cutoff, else 0, with d = sqrt(dx*dx + dy*dy).
 double Affinity(const Element& factor, const Element& region,
                 const GrnParams& params);
@@ -108,7 +108,7 @@ class Network {
     return successors_;
   }
 
-  // MODEL §2: a path from some input to a DIVIDE output, and one from some
+  // model §2.5: a path from some input to a DIVIDE output, and one from some
   // input to an EXPAND or CONTRACT output.
   Viability CheckViability() const;
 

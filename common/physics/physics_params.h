@@ -1,4 +1,4 @@
-// Constants of the motion physics (MODEL §7) and their configuration
+// Constants of the motion physics (model §7) and their configuration
 // message.
 #ifndef ANIMAT_COMMON_PHYSICS_PHYSICS_PARAMS_H_
 #define ANIMAT_COMMON_PHYSICS_PHYSICS_PARAMS_H_
@@ -28,7 +28,7 @@ struct PhysicsParams {
   double dt = 0.05;                // Time per simulation step.
   double actuation_max = 0.2;      // A_max, in [0, 0.5).
   double min_rest_fraction = 0.1;  // Rest length never below this * L0.
-  // RK4 with one sub-step: the cheapest setting that meets MODEL §7's
+  // RK4 with one sub-step: the cheapest setting that meets model §7.6's
   // accuracy rule (docs/accuracy.md, docs/model.md).
   Integrator integrator = Integrator::kRk4;
   int substeps = 1;  // Physics sub-steps per simulation step.

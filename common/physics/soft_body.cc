@@ -121,7 +121,7 @@ void SoftBody::ComputeForces(const MotionState& state, std::vector<Vec2>* force,
 
 void SoftBody::Step(MotionState* state) {
   const int substeps = params_.substeps;
-  // dt / 1 == dt: the default path is exactly MODEL §7's step.
+  // dt / 1 == dt: the default path is exactly docs/model.md §7.6's step.
   const double h = params_.dt / substeps;
   const bool stable = params_.drag_update == DragUpdate::kStable;
   for (int sub = 0; sub < substeps; ++sub) {

@@ -1,4 +1,4 @@
-// Forces on a soft body and their integration (MODEL §7).
+// Forces on a soft body and their integration (docs/model.md §7).
 //
 // SoftBody compiles a Body into flat arrays once; the running state
 // (positions, velocities) is a MotionState owned by the caller. Rest lengths
@@ -61,7 +61,7 @@ class SoftBody : public MotionStepper {
 
   // One simulation step of dt in params().substeps sub-steps of
   // h = dt / substeps, each by params().integrator:
-  //   semi-implicit Euler (MODEL §7): v <- v + F(x, v) / m h; x <- x + v h;
+  //   semi-implicit Euler (model §7.6): v <- v + F(x, v) / m h; x <- x + v h;
   //   velocity Verlet: x <- x + v h + a0 h^2 / 2 with a0 = F(x, v) / m,
   //     a1 = F(x', v + a0 h) / m, v <- v + (a0 + a1) h / 2. The geometry
   //     of x' (spring and skin lengths and directions, pressure) serves
@@ -76,7 +76,7 @@ class SoftBody : public MotionStepper {
   // Drag alone over time h, linearly implicit in each node's velocity with
   // the drag coefficients of the current velocities:
   //   (m I + h D_i) v_i' = m v_i + h (F_i + D_i v_i),
-  // where F_i is node i's explicit drag force (MODEL §7) and D_i = sum over
+  // where F_i is node i's explicit drag force (model §7.4) and D_i = sum over
   // its skin edges of l (d_T |v_T| t t^T + d_N |v_N| n n^T) / 2. Exact for a
   // translating edge (v' = v / (1 + c |v| h)); never reverses the velocity
   // of a translating body.
@@ -98,7 +98,7 @@ class SoftBody : public MotionStepper {
   void EulerStep(double h, bool drag, MotionState* state);
   void VerletStep(double h, bool drag, MotionState* state);
   void Rk4Step(double h, bool drag, MotionState* state);
-  // What the forces need of the positions alone (MODEL §7): each spring's
+  // What the forces need of the positions alone (model §7): each spring's
   // length and unit vector, each skin edge's length and tangent, and the
   // pressure force on each node.
   struct Geometry {

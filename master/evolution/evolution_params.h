@@ -1,4 +1,4 @@
-// The genetic algorithm's settings (MODEL §9) and the run configuration
+// The genetic algorithm's settings (docs/model.md §9) and the run configuration
 // that pairs them with the model's (animat.v1.RunConfig).
 #ifndef ANIMAT_MASTER_EVOLUTION_EVOLUTION_PARAMS_H_
 #define ANIMAT_MASTER_EVOLUTION_EVOLUTION_PARAMS_H_

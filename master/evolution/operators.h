@@ -1,4 +1,4 @@
-// The genetic operators (MODEL §9): ranking, tournament selection,
+// The genetic operators (docs/model.md §9): ranking, tournament selection,
 // multipoint crossover, element-level mutation, duplication and deletion of
 // runs of elements, initial random genomes, and the making of one
 // offspring.

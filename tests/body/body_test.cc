@@ -1,6 +1,6 @@
-// Tests of the soft body built on the cell centres (MODEL §6).
+// Tests of the soft body built on the cell centres (docs/model.md §6).
 //
-// The references are written from the MODEL's words, not from the code:
+// The references are written from the model's words, not from the code:
 // springs are the Gabriel graph (i-j iff no other p has
 // (px-cix)(px-cjx) + (py-ciy)(py-cjy) < 0) with every properly crossing
 // edge removed; chambers are the bounded faces, counter-clockwise, with their
@@ -80,7 +80,7 @@ double ShoelaceArea(const std::vector<Vec2>& p, const std::vector<int>& walk) {
   return 0.5 * twice;
 }
 
-// The MODEL's spring rule, brute force.
+// The spring rule of model §6.1, brute force.
 std::vector<IndexEdge> ReferenceSprings(const std::vector<Vec2>& c) {
   const int n = static_cast<int>(c.size());
   std::vector<IndexEdge> gabriel;
@@ -528,7 +528,7 @@ TEST(BodyTest, BuildingIsDeterministic) {
   EXPECT_EQ(a.skin, b.skin);
 }
 
-// MODEL §6 (v2): a body must enclose area.
+// model §6.5 (v2): a body must enclose area.
 TEST(ChamberRuleTest, StraightChainHasNoChamberAndFails) {
   std::vector<Vec2> chain;
   for (int i = 0; i < 32; ++i) chain.push_back({1.0 * i, 0.0});

@@ -1,4 +1,4 @@
-// Tests of development from one cell (MODEL §4) and of its parameters.
+// Tests of development from one cell (docs/model.md §4) and of its parameters.
 //
 // The genomes are made by hand so that the network's behaviour is known:
 // UNIFORM excites one unit U (weight 10, so U rises towards tanh(5)), and
@@ -202,7 +202,7 @@ TEST_F(DevelopmentTest, MaternalInputsAreReadAtTheCellsPosition) {
 TEST_F(DevelopmentTest, MorphogenSignalsUseHistoryAndStartOfStepPositions) {
   // UNIFORM -> unit M, which makes a morphogen; M's signal excites unit R
   // (weight 10 exp(-1)), DIVIDE (10) and ROTATE_RIGHT (10 exp(-1)). Each
-  // cell's R follows MODEL §3 with the signal of MODEL §5 computed from the
+  // cell's R follows model §3.1 with the signal of model §5.2 computed from the
   // positions at the start of the step and the history of M in every cell
   // (a daughter's history before her birth being her mother's).
   Genome g;
@@ -311,7 +311,7 @@ TEST_F(DevelopmentTest, DivisionPlacesOrientsAndSizesTheDaughter) {
     const int old_cells = before.embryo.cells();
     const int born = now.embryo.cells() - old_cells;
     // Which old cells divided: DIVIDE predicted from last step's levels
-    // (MODEL §3) reaches 0.9.
+    // (model §3) reaches 0.9.
     std::vector<int> mothers;
     for (int c = 0; c < old_cells; ++c) {
       const double d = before.levels[c][divide_node];

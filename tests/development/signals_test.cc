@@ -1,6 +1,6 @@
-// Tests of the maternal and endogenous morphogens (MODEL §5).
+// Tests of the maternal and endogenous morphogens (docs/model.md §5).
 //
-// Expected values are written from MODEL's words with libm (std::exp,
+// Expected values are written from the model's words with libm (std::exp,
 // std::cos), not with the project's fast_math, so a wrong constant or a
 // wrong formula in the code shows up as a mismatch.
 #include "common/development/signals.h"

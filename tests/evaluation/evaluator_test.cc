@@ -97,7 +97,8 @@ TEST(EvaluatorTest, RunawayMotionIsANumericalFailure) {
 }
 
 TEST(EvaluatorTest, ChainWithoutChamberFailsAsADegenerateBody) {
-  // seed-1203 develops into a straight chain of 32 cells (MODEL §6, v2).
+  // seed-1203 develops into a straight chain of 32 cells
+  // (docs/model.md §6.5, v2).
   const Genome chain = LoadGenome("seed-1203.json");
   const EvaluationResult r = Evaluate(chain, ShortConfig());
   EXPECT_EQ(r.status, EvalStatus::kDegenerateBody);

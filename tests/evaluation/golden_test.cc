@@ -37,7 +37,7 @@ TEST_P(GoldenTest, FitnessBitsAndFinalStateAreFixed) {
   ASSERT_TRUE(genome.ok());
   ModelConfig config;
   config.grn.precision = golden.precision;
-  // The values below were recorded under MODEL v1: chains allowed and
+  // The values below were recorded under model v1: chains allowed and
   // semi-implicit Euler with one sub-step. `min_chambers: 0` with that
   // integrator reproduces them bit for bit.
   config.evaluation.min_chambers = 0;
@@ -52,8 +52,8 @@ TEST_P(GoldenTest, FitnessBitsAndFinalStateAreFixed) {
   EXPECT_EQ(r.cells, 32);
 }
 
-// The default configuration of MODEL v2: the chamber rule and RK4 with one
-// sub-step (MODEL §7's rule). Recorded when RK4 became the default.
+// The default configuration of model v2: the chamber rule and RK4 with one
+// sub-step (model §7.6's rule). Recorded when RK4 became the default.
 class GoldenDefaultTest : public ::testing::TestWithParam<Golden> {};
 
 TEST_P(GoldenDefaultTest, FitnessBitsAndFinalStateAreFixed) {
@@ -86,7 +86,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Golden{"seed-139.json", Precision::kDouble,
                              0x3e243d8f0199d074ull, 0x379475141da9ba33ull}));
 
-// Under MODEL v2 the chamber rule changes nothing for a body with chambers:
+// Under model v2 the chamber rule changes nothing for a body with chambers:
 // the same bits as with min_chambers 0.
 TEST(GoldenTest, ChamberRuleLeavesChamberedBodiesBitIdentical) {
   v1::Genome message;

@@ -23,8 +23,8 @@ int Count(const Genome& genome, ElementType type) {
   return n;
 }
 
-// Checks the structure of MODEL §9: `units` P elements, each immediately
-// followed by one G element, and one S element per channel.
+// Checks the structure of docs/model.md §9.3: `units` P elements, each
+// immediately followed by one G element, and one S element per channel.
 ::testing::AssertionResult HasInitialStructure(const Genome& genome,
                                                int units) {
   const int s_elements = kInputChannels + kOutputChannels;

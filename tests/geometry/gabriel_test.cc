@@ -1,6 +1,6 @@
-// Tests of the plane Gabriel graph and its predicates (MODEL §6).
+// Tests of the plane Gabriel graph and its predicates (docs/model.md §6).
 //
-// The reference is a brute force written from the MODEL's words: i-j is an
+// The reference is a brute force written from the model's words: i-j is an
 // edge iff no other p has (px-cix)(px-cjx) + (py-ciy)(py-cjy) < 0, then
 // every edge that properly crosses another is removed.
 #include "common/geometry/gabriel.h"

@@ -1,5 +1,5 @@
-// Tests of the faces of a plane graph (chambers and skin, MODEL §6) and of
-// WalkArea.
+// Tests of the faces of a plane graph (chambers and skin, docs/model.md §6.2)
+// and of WalkArea.
 #include "common/geometry/plane_faces.h"
 
 #include <gtest/gtest.h>
@@ -91,7 +91,7 @@ std::vector<bool> Bridges(int n, std::span<const IndexEdge> edges) {
   return bridge;
 }
 
-// Everything MODEL §6 and plane_faces.h promise about a successful result.
+// Everything model §6 and plane_faces.h promise about a successful result.
 void ExpectValidFaces(std::span<const Vec2> points,
                       std::span<const IndexEdge> edges,
                       const PlaneFaces& faces) {

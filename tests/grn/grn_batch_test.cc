@@ -1,11 +1,11 @@
-// Tests of the network dynamics (MODEL §3):
+// Tests of the network dynamics (docs/model.md §3):
 //   A_u = sum over u's regions r and all factors f of w(f, r) * c_f,
 //   L_u <- clamp(L_u + (tanh(A_u / 2) - L_u) * 0.05, 0, 1),
 // synchronous, per cell, with c_f the input value, the source's L or its
 // morphogen signal M by the factor's kind.
 //
 // Expected trajectories are computed here with std::tanh and std::exp from
-// MODEL's formulas, never with the code under test.
+// the model's formulas, never with the code under test.
 #include "common/grn/grn_batch.h"
 
 #include <gtest/gtest.h>
@@ -30,7 +30,7 @@ namespace {
 
 using Inputs = std::array<double, kInputChannels>;
 
-constexpr double kDt = 0.05;  // MODEL §3.
+constexpr double kDt = 0.05;  // model §3.
 // Agreement between the code (its own exp and tanh) and std::exp/std::tanh.
 constexpr double kTrajectoryTolerance = 1e-14;
 
@@ -47,7 +47,7 @@ Network Build(const Genome& genome) {
   return Network::Build(genome, GrnParams{});
 }
 
-// w(f, r) of MODEL §2, written out independently.
+// w(f, r) of model §2, written out independently.
 double ModelAffinity(const Element& f, const Element& r) {
   const double dx = f.x - r.x;
   const double dy = f.y - r.y;
@@ -56,7 +56,7 @@ double ModelAffinity(const Element& f, const Element& r) {
   return f.sign * r.sign * 10.0 * std::exp(-d);
 }
 
-// One MODEL update of one level.
+// One update of one level, as model §3.1 writes it.
 double ModelStep(double level, double activation) {
   const double x = level + (std::tanh(activation / 2.0) - level) * kDt;
   return std::clamp(x, 0.0, 1.0);
@@ -64,7 +64,7 @@ double ModelStep(double level, double activation) {
 
 constexpr Inputs kUniformOnly = {0.0, 0.0, 0.0, 1.0};
 
-// A MODEL-derived reference for any genome: weights from element pairs with
+// A model-derived reference for any genome: weights from element pairs with
 // the binding rules of §2, levels updated as in §3. Node parsing is taken
 // from Network (tested in network_test.cc).
 class ReferenceGrn {
@@ -226,7 +226,7 @@ TEST(GrnBatchTest, InputNodeHoldsItsInputValue) {
 }
 
 // One input (UNIFORM = 1) excites one unit; the unit inhibits itself and
-// excites a DIVIDE output. Trajectory from MODEL's formula.
+// excites a DIVIDE output. Trajectory from the model's formula.
 TEST(GrnBatchTest, TrajectoryFollowsModelFormula) {
   const Genome genome =
       MakeGenome({In(InputChannel::kUniform, 0, 0), P(1, 0), GInt(1, 2, -1),
@@ -734,7 +734,7 @@ TEST(GrnBatchTest, UnitMakingBothKindsUsesLevelAndSignal) {
   EXPECT_GT(out, 0.05);  // Later the unit's own level does.
 }
 
-// Random genomes against the MODEL reference above: every level of every
+// Random genomes against the model reference above: every level of every
 // cell over 100 steps, with own signals. Some random networks stay silent
 // (their inputs only inhibit), so activity is required of most, not all.
 TEST(GrnBatchTest, RandomGenomesFollowTheModelReference) {

@@ -1,7 +1,7 @@
-// Tests of the genome-to-network map (MODEL §2): affinities, parsing into
-// nodes, who binds whom, summed multigraph weights and viability.
+// Tests of the genome-to-network map (docs/model.md §2): affinities, parsing
+// into nodes, who binds whom, summed multigraph weights and viability.
 //
-// Expected values are written from MODEL's words with std::exp and
+// Expected values are written from the model's words with std::exp and
 // std::sqrt, never taken from the code under test. Genomes are built by
 // hand; elements meant not to interact are placed at least 3 apart.
 #include "common/grn/network.h"
@@ -30,14 +30,14 @@ using testing::MakeGenome;
 using testing::Out;
 using testing::P;
 
-// Builds with the MODEL defaults, checking the genome is valid first.
+// Builds with the model defaults, checking the genome is valid first.
 Network Build(const Genome& genome) {
   const Status status = ValidateGenome(genome);
   EXPECT_TRUE(status.ok()) << status.ToString();
   return Network::Build(genome, GrnParams{});
 }
 
-// MODEL §2, written out independently: sign·sign·10·exp(−d) for d < 3.
+// model §2, written out independently: sign·sign·10·exp(−d) for d < 3.
 double ModelAffinity(const Element& f, const Element& r) {
   const double dx = f.x - r.x;
   const double dy = f.y - r.y;
@@ -153,7 +153,7 @@ TEST(AffinityTest, JustBelowThreeBinds) {
 }
 
 // Two offsets where sqrt(dx*dx + dy*dy) in double and the exactly rounded
-// distance (hypot) fall on opposite sides of the cut-off 3: MODEL fixes
+// distance (hypot) fall on opposite sides of the cut-off 3: model §2.2 fixes
 // the first.
 TEST(AffinityTest, DistanceIsSqrtOfSumOfSquaresNotHypot) {
   const GrnParams params;

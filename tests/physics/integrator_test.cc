@@ -311,7 +311,7 @@ TEST(StableDragTest, HundredfoldDragNeverReversesTheVelocity) {
 }
 
 TEST(StableDragTest, ConvergesToExplicitDragAsTheStepShrinks) {
-  // A deforming body (not a translation): both updates approximate MODEL's
+  // A deforming body (not a translation): both updates approximate the model's
   // drag; their difference shrinks with the step.
   Problem p = SmoothProblem(31);
   auto difference = [&](int substeps) {

@@ -1,6 +1,7 @@
 // Tests of the physics scene read from an animat.v1.Scene and of bodies
 // written as animat.v1.Body: validation with errors naming the field,
-// defaults where the file is silent (MODEL §7's constants), round trips.
+// defaults where the file is silent (docs/model.md §7.8's constants), round
+// trips.
 #include "common/physics/scene.h"
 
 #include <gtest/gtest.h>
@@ -119,7 +120,7 @@ TEST(SceneTest, AbsentPhysicsTakesTheModelDefaults) {
   Result<Scene> scene = SceneFromProto(ValidScene());
   ASSERT_TRUE(scene.ok()) << scene.status().ToString();
   const PhysicsParams& p = scene->params;
-  // MODEL §7: m = 1, k = 10, gamma = 0.5, c_p = 10, d_N = 1, dt = 0.05,
+  // model §7.8: m = 1, k = 10, gamma = 0.5, c_p = 10, d_N = 1, dt = 0.05,
   // A_max = 0.2 [paper]; d_T = d_N / 200 [paper]; floor 0.1.
   EXPECT_EQ(p.mass, 1.0);
   EXPECT_EQ(p.stiffness, 10.0);
@@ -286,7 +287,7 @@ TEST(SceneTest, PhysicsConstantsOutOfRangeAreRejected) {
   ExpectEditRejected(
       [](v1::Scene* m) { m->mutable_physics()->set_drag_normal(-1); },
       "physics.drag_normal");
-  // A_max just below 0.5 and 0 are valid (MODEL §7: [0, 0.5)).
+  // A_max just below 0.5 and 0 are valid (model §7.2: [0, 0.5)).
   v1::Scene message = ValidScene();
   message.mutable_physics()->set_actuation_max(0.4999);
   EXPECT_TRUE(SceneFromProto(message).ok());
