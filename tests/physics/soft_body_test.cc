@@ -1,8 +1,8 @@
-// Tests of the motion physics (MODEL §7): spring, pressure and drag forces,
-// rest lengths from actuation, semi-implicit Euler integration, and the
-// state checks of MODEL §8.
+// Tests of the motion physics (docs/model.md §7): spring, pressure and drag
+// forces, rest lengths from actuation, semi-implicit Euler integration, and
+// the state checks of model §8.3.
 //
-// Expected forces are computed in the tests from the MODEL's equations (or
+// Expected forces are computed in the tests from the model's equations (or
 // by hand), never by calling the code under test.
 #include "common/physics/soft_body.h"
 
@@ -51,8 +51,8 @@ double Shoelace(const std::vector<Vec2>& p, const std::vector<int>& walk) {
 
 PhysicsParams NoDrag() {
   PhysicsParams p;
-  p.integrator = Integrator::kSemiImplicitEuler;  // These tests are MODEL
-                                                  // §7's written step.
+  p.integrator = Integrator::kSemiImplicitEuler;  // As written in
+                                                  // model §7.6.
   p.drag_normal = 0.0;
   p.drag_tangential = 0.0;
   return p;
@@ -297,7 +297,7 @@ TEST(SoftBodyTest, SpringDampingOpposesRelativeVelocityAlongTheSpring) {
 }
 
 TEST(SoftBodyTest, ZeroLengthSpringExertsNoForceAndNoNaN) {
-  // u = 0 when l = 0 (MODEL §7); FP traps are on, so 0/0 would fail here.
+  // u = 0 when l = 0 (model §7.2); FP traps are on, so 0/0 would fail here.
   const Body body = OneSpring({1, 1}, {1, 1}, 1.0);
   SoftBody soft(body, PhysicsParams{});
   MotionState state = AtRest(body);
@@ -485,7 +485,7 @@ TEST(SoftBodyTest, ChamberPushedInsideOutTurnsBack) {
 // Drag.
 
 TEST(SoftBodyTest, DragIsQuadraticAndOpposesTheEdgeVelocity) {
-  // One skin edge, random end velocities: the force from MODEL §7, with the
+  // One skin edge, random end velocities: the force from model §7.4, with the
   // centre velocity v = (vi + vj)/2, half to each end.
   Source source(41);
   for (int trial = 0; trial < 50; ++trial) {
