@@ -20,6 +20,9 @@ SoftBody::SoftBody(const Body& body, const PhysicsParams& params)
   walk_begin_.push_back(0);
   for (const Chamber& c : body.chambers) {
     walk_.insert(walk_.end(), c.walk.begin(), c.walk.end());
+    for (size_t k = 0; k < c.walk.size(); ++k) {
+      walk_next_.push_back(c.walk[k + 1 < c.walk.size() ? k + 1 : 0]);
+    }
     walk_begin_.push_back(static_cast<int>(walk_.size()));
     rest_area_.push_back(c.rest_area);
   }
@@ -69,16 +72,24 @@ void SoftBody::AddPressureForces(const MotionState& state, Vec2* force) const {
 
 void SoftBody::AddPressure(const Vec2* x, Vec2* force) const {
   const double cp = params_.pressure;
+  const int* walk = walk_.data();
+  const int* next = walk_next_.data();
   for (size_t c = 0; c < rest_area_.size(); ++c) {
     const int begin = walk_begin_[c];
     const int end = walk_begin_[c + 1];
-    const std::span<const int> walk(&walk_[begin], end - begin);
-    const double area = WalkArea(x, walk);
+    // WalkArea's operations, in its order (so S == S0 at rest, bit for
+    // bit): the shoelace sum relative to the first vertex.
+    const Vec2 origin = x[walk[begin]];
+    double twice = 0.0;
+    for (int k = begin + 1; k + 1 < end; ++k) {
+      twice += Cross(x[walk[k]] - origin, x[walk[k + 1]] - origin);
+    }
+    const double area = 0.5 * twice;
     // c_p * l * (1 - S / S0) * n with n = (dy, -dx) / l, half to each end.
     const double half = 0.5 * cp * (1.0 - area / rest_area_[c]);
     for (int k = begin; k < end; ++k) {
-      const int a = walk_[k];
-      const int b = walk_[k + 1 < end ? k + 1 : begin];
+      const int a = walk[k];
+      const int b = next[k];
       const Vec2 push = Vec2{x[b].y - x[a].y, -(x[b].x - x[a].x)} * half;
       force[a] += push;
       force[b] += push;

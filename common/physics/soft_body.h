@@ -92,6 +92,7 @@ class SoftBody : public MotionStepper {
   std::vector<int> spring_a_, spring_b_;
   std::vector<double> rest0_, rest_;
   std::vector<int> walk_begin_, walk_;  // Chamber walks, flattened.
+  std::vector<int> walk_next_;          // The node after walk_[k] in its walk.
   std::vector<double> rest_area_;
   std::vector<int> skin_a_, skin_b_;
   // One sub-step of h; `drag` says whether drag is among the forces.
