@@ -35,8 +35,9 @@ struct ExperimentOptions {
 // The chaos measurement's motion steps.
 inline constexpr int kChaosSteps[] = {500, 1000, 2000, 4000, 6000};
 
-// MODEL §7: the label of the cheapest candidate (median ms per evaluation;
-// the first of equals) that meets the rule (CandidateResult::MeetsRule), or
+// docs/model.md §7.6: the label of the cheapest candidate (median ms per
+// evaluation; the first of equals) that meets the rule
+// (CandidateResult::MeetsRule), or
 // "" when none does.
 std::string RuleChoice(const std::vector<CandidateResult>& candidates);
 

@@ -74,7 +74,8 @@ KindSummary SummariseKind(const CandidateResult& c, bool evolved) {
   return {Median(errors), Percentile90(errors), Median(ms)};
 }
 
-// The candidates that meet MODEL §7's rule, cheapest first, and the choice.
+// The candidates that meet the accuracy rule (docs/model.md §7.6), cheapest
+// first, and the choice.
 std::string RuleSummary(const Report& report) {
   std::vector<const CandidateResult*> meeting;
   for (const CandidateResult& c : report.candidates) {
@@ -251,7 +252,8 @@ std::string SummaryMarkdown(const Report& report) {
       "no other candidate without failures is both faster and more "
       "accurate (median time, median fitness error); candidates with a "
       "failure, or not run, or whose option had no effect are not "
-      "eligible. Rule (MODEL §7): every evaluation ok, fitness error at "
+      "eligible. Rule (docs/model.md §7.6): every evaluation ok, fitness error "
+      "at "
       "most " +
       Format("%g", kRuleP90) +
       " at the 90th percentile and no pair swapped; the cheapest (median "

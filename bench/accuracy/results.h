@@ -63,12 +63,13 @@ struct CandidateResult {
   bool Eligible() const {
     return error.empty() && !animats.empty() && failures == 0;
   }
-  // MODEL §7's rule for the default integrator: eligible, fitness error at
-  // most kRuleP90 at the 90th percentile, and no pair swapped.
+  // The accuracy rule for the default integrator (docs/model.md §7.6):
+  // eligible, fitness error at most kRuleP90 at the 90th percentile, and
+  // no pair swapped.
   bool MeetsRule() const;
 };
 
-// The 90th-percentile fitness error MODEL §7 allows the default.
+// The 90th-percentile fitness error the rule allows the default.
 inline constexpr double kRuleP90 = 0.01;
 
 inline bool CandidateResult::MeetsRule() const {
@@ -103,7 +104,7 @@ struct Report {
   std::vector<ChaosResult> chaos;
   double total_seconds = 0.0;
   // The label of the cheapest candidate (median ms per evaluation) that
-  // meets MODEL §7's rule, or empty when none does.
+  // meets the accuracy rule, or empty when none does.
   std::string rule_choice;
 };
 
