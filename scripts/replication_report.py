@@ -112,10 +112,17 @@ def analyze(animat, db, individual):
                "-o", "-"])
     a = json.loads(out)
     strategy = a.get("strategy", {})
+    scores = {x["label"].lower(): x.get("score", 0.0)
+              for x in strategy.get("score", [])}
+    nearest = max(sorted(scores), key=lambda k: scores[k]) if scores else ""
+    if nearest and not scores[nearest] > 0.0:
+        nearest = "none"  # Every label scores 0.
     return {
         "label": strategy.get("label", "OTHER").lower(),
+        "nearest": nearest,
+        "nearest_score": scores.get(nearest, 0.0),
         "margin": strategy.get("margin", 0.0),
-        "scores": strategy.get("score", {}),
+        "scores": scores,
         "features": strategy.get("features", {}),
         "period_steps": a.get("periodSteps", a.get("period_steps")),
         "amplitude_mean": a.get("amplitudeMean", a.get("amplitude_mean")),
@@ -198,6 +205,9 @@ def main():
                                "amplitude": a["amplitude_mean"],
                                "label": a["label"]})
         r["top_members"] = points
+        r["spearman_amplitude_frequency"] = spearman(
+            [p["amplitude"] for p in points],
+            [p["frequency"] for p in points]) if len(points) > 2 else None
         print(f"{r['name']}: best {best['fitness']:.3f} "
               f"({r['best_analysis']['label']}), {r['generations']} "
               "generations", file=sys.stderr)
@@ -209,12 +219,23 @@ def main():
         run([animat, "figure", "fitness", *dbs, "-o",
              os.path.join(args.dest, f"fitness-dn{drag}.svg")])
 
-    # One best of each strategy: the fittest best with that label.
+    # Panels: the fittest best of each label found, and for each of the
+    # paper's labels the best that scores highest on it (when above 0), so
+    # that the nearest animats are drawn even when none is labelled.
     shown = {}
     for r in sorted(runs, key=lambda r: -r["best"]["fitness"]):
         label = r["best_analysis"]["label"]
         if label not in shown:
             shown[label] = r
+    for label in ("turtle", "shark", "worm", "jellyfish"):
+        if label in shown:
+            continue
+        scored = [r for r in runs
+                  if r["best_analysis"]["scores"].get(label, 0.0) > 0.0]
+        if scored:
+            top = max(scored, key=lambda r: (
+                r["best_analysis"]["scores"][label], r["best"]["fitness"]))
+            shown["nearest-" + label] = top
     problems = []
     for label, r in shown.items():
         base = os.path.join(args.dest, f"{label}-{r['name']}")
@@ -248,7 +269,7 @@ def main():
     # The tables.
     lines = ["| run | d_N | seed | generations | random genomes tried | best at 0 "
              "| best (id) | mean | median | cells | springs | chambers | skin "
-             "| spreads | strategy (margin) |",
+             "| spreads | strategy (margin); nearest label and score |",
              "|---|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:"
              "|---|---|"]
     for r in runs:
@@ -261,7 +282,8 @@ def main():
             f"{sl['mean_fitness']:.2f} | {sl['median_fitness']:.2f} | "
             f"{b['cells']} | {b['springs']} | {b['chambers']} | "
             f"{b['skin_edges']} | {b['spread_major']:.2f}, "
-            f"{b['spread_minor']:.2f} | {a['label']} ({a['margin']:.2f}) |")
+            f"{b['spread_minor']:.2f} | {a['label']} ({a['margin']:.2f}); "
+            f"nearest {a['nearest']} {a['nearest_score']:.2f} |")
     lines.append("")
     lines.append("| run | cells of the ok members of the last generation |")
     lines.append("|---|---|")
