@@ -5,13 +5,17 @@
 //   build/bin/animat-bench [--benchmark_filter=...]
 //
 // BM_Evaluate reports ms per full evaluation (6600 steps), with double and
-// float network arithmetic. The per-step benchmarks report us per
-// simulation step of the motion phase, set up as the evaluator sets it up
-// (only nodes that influence EXPAND or CONTRACT, inputs frozen): physics
-// (BM_PhysicsStep, per integrator; each force family alone; the Bullet
-// backend with and without contacts), and the network side (BM_GrnStep)
-// split into its network update (BM_NetworkStep) and morphogen signals
-// (BM_SignalStep), each in double and float.
+// float network arithmetic; BM_EvaluateEuler the same under the earlier
+// default integrator (semi-implicit Euler, one sub-step). BM_EvaluateFailure
+// is the cost of an evaluation that fails: a non-viable network, too few
+// cells, a body without a chamber, a late division (bench/data/failing/,
+// and the reference genome with divisions required to end by step 10). The
+// per-step benchmarks report us per simulation step of the motion phase, set up
+// as the evaluator sets it up (only nodes that influence EXPAND or CONTRACT,
+// inputs frozen): physics (BM_PhysicsStep, per integrator; each force family
+// alone; the Bullet backend with and without contacts), and the network side
+// (BM_GrnStep) split into its network update (BM_NetworkStep) and morphogen
+// signals (BM_SignalStep), each in double and float.
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
@@ -32,20 +36,22 @@
 namespace animat {
 namespace {
 
+// A genome of bench/data; exits with the reason if it cannot be read.
+Genome LoadBenchGenome(const std::string& name) {
+  const std::string path = std::string(ANIMAT_BENCH_DATA_DIR) + "/" + name;
+  v1::Genome message;
+  Status status = ReadProtoFile(path, &message);
+  Result<Genome> genome =
+      status.ok() ? GenomeFromProto(message) : Result<Genome>(status);
+  if (!genome.ok()) {
+    std::fprintf(stderr, "%s\n", genome.status().ToString().c_str());
+    std::exit(1);
+  }
+  return *genome;
+}
+
 const Genome& BenchGenome() {
-  static const Genome genome = [] {
-    const std::string path =
-        std::string(ANIMAT_BENCH_DATA_DIR) + "/bench-genome.json";
-    v1::Genome message;
-    Status status = ReadProtoFile(path, &message);
-    Result<Genome> genome =
-        status.ok() ? GenomeFromProto(message) : Result<Genome>(status);
-    if (!genome.ok()) {
-      std::fprintf(stderr, "%s\n", genome.status().ToString().c_str());
-      std::exit(1);
-    }
-    return *genome;
-  }();
+  static const Genome genome = LoadBenchGenome("bench-genome.json");
   return genome;
 }
 
@@ -97,6 +103,38 @@ BENCHMARK(BM_Evaluate)
     ->Arg(0)
     ->Arg(1)
     ->Unit(benchmark::kMillisecond);
+
+void BM_EvaluateEuler(benchmark::State& state) {
+  const Genome& genome = BenchGenome();
+  ModelConfig config;
+  config.physics.integrator = Integrator::kSemiImplicitEuler;
+  EvaluationResult result;
+  for (auto _ : state) {
+    result = Evaluate(genome, config);
+    benchmark::DoNotOptimize(result);
+  }
+  state.counters["ok"] = result.status == EvalStatus::kOk;
+}
+BENCHMARK(BM_EvaluateEuler)->Unit(benchmark::kMillisecond);
+
+// state.range(0): 0 non-viable, 1 too few cells, 2 no chamber, 3 late
+// division. The label is the status the evaluation gave.
+void BM_EvaluateFailure(benchmark::State& state) {
+  static const char* kGenomes[] = {
+      "failing/non-viable.json", "failing/too-few-cells.json",
+      "failing/no-chamber.json", "bench-genome.json"};
+  const Genome genome = LoadBenchGenome(kGenomes[state.range(0)]);
+  ModelConfig config;
+  if (state.range(0) == 3) config.development.last_division_step = 10;
+  EvaluationResult result;
+  for (auto _ : state) {
+    result = Evaluate(genome, config);
+    benchmark::DoNotOptimize(result);
+  }
+  state.SetLabel(EvalStatusName(result.status));
+  state.counters["steps"] = static_cast<double>(result.steps);
+}
+BENCHMARK(BM_EvaluateFailure)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 
 template <typename S>
 void BM_Development(benchmark::State& state) {
