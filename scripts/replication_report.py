@@ -193,6 +193,15 @@ def main():
                     f"# The model of run {r['name']} (docs/results.md).\n")
             f.write(r["model_text"])
         r["best_genome"] = stem + ".json"
+        # The stored genome and model, simulated again here, must give the
+        # stored fitness to the last bit.
+        again = run([animat, "simulate", "--genome", stem + ".json",
+                     "--config", stem + ".config.txtpb"])
+        fitness = re.search(r"^fitness: (\S+)$", again, re.M)
+        r["resimulated_fitness"] = float(fitness.group(1)) if fitness else None
+        r["resimulated_same_bits"] = (r["resimulated_fitness"] is not None and
+                                      float.hex(r["resimulated_fitness"]) ==
+                                      float.hex(best["fitness"]))
         r["best_analysis"] = analyze(animat, r["db"], best["id"])
         # Amplitude against frequency over the fittest members.
         members = [m for m in r["members"] if m["status"] == "ok"][:args.top]
@@ -285,6 +294,26 @@ def main():
             f"{b['spread_minor']:.2f} | {a['label']} ({a['margin']:.2f}); "
             f"nearest {a['nearest']} {a['nearest_score']:.2f} |")
     lines.append("")
+    keys = ["synchrony", "stroke_asymmetry", "holding", "coasting",
+            "lr_symmetry", "fb_symmetry", "fb_lag", "lr_lag",
+            "fb_amplitude_gradient", "elongation", "end_taper",
+            "back_protrusion", "irregularity"]
+    lines.append("| run | period (steps) | amplitude | " +
+                 " | ".join(k.replace("_", " ") for k in keys) + " |")
+    lines.append("|---|" + "---:|" * (len(keys) + 2))
+    for r in runs:
+        a = r["best_analysis"]
+        values = []
+        for k in keys:
+            v = a["features"].get(k)
+            values.append("—" if v is None else f"{v:+.2f}")
+        period = a["period_steps"]
+        amplitude = a["amplitude_mean"]
+        lines.append(
+            f"| {r['name']} | {period:.0f} | {amplitude:.2f} | "
+            if period and amplitude is not None else f"| {r['name']} | — | — | ")
+        lines[-1] += " | ".join(values) + " |"
+    lines.append("")
     lines.append("| run | cells of the ok members of the last generation |")
     lines.append("|---|---|")
     for r in runs:
@@ -298,6 +327,11 @@ def main():
     with open(os.path.join(args.dest, "replication.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     print(json.dumps(trade), file=sys.stderr)
+    for r in runs:
+        if not r["resimulated_same_bits"]:
+            print(f"{r['name']}: the best simulated again gives "
+                  f"{r['resimulated_fitness']!r}, stored "
+                  f"{r['best']['fitness']!r}", file=sys.stderr)
     for problem in problems:
         print("not drawn: " + problem, file=sys.stderr)
 
