@@ -1,8 +1,8 @@
 // animat simulate --genome FILE [--config FILE] [--trace FILE] [--every K]
-#include <cinttypes>
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cli/commands.h"
 #include "cli/load.h"
@@ -10,6 +10,7 @@
 #include "common/evaluation/trace_recorder.h"
 #include "common/genome/genome_proto.h"
 #include "common/io/proto_file.h"
+#include "master/lineage/store.h"
 
 namespace animat::cli {
 namespace {
@@ -22,22 +23,76 @@ struct Options {
   bool json = false;
 };
 
-void PrintResult(const EvaluationResult& r) {
-  std::printf("status: %s\n", EvalStatusName(r.status));
-  if (!r.reason.empty()) std::printf("reason: %s\n", r.reason.c_str());
-  if (r.fitness) std::printf("fitness: %.17g\n", *r.fitness);
-  std::printf("cells: %d\n", r.cells);
-  std::printf("steps: %" PRId64 "\n", r.steps);
+// One line of the result: its key and its value as text, quoted in JSON
+// when it is a string.
+struct Field {
+  std::string key;
+  std::string value;
+  bool text = false;
+};
+
+// 17 significant digits: reads back to the same double.
+std::string Exact(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.17g", value);
+  return text;
+}
+
+// The result's fields in the order printed, named and written as the
+// lineage store's columns are (docs/lineage.md, `evaluations`): the status
+// in lowercase, the state hash as 16 hex digits, numbers as numbers.
+std::vector<Field> ResultFields(const EvaluationResult& r) {
+  std::vector<Field> fields;
+  fields.push_back({"status", EvalStatusName(r.status), true});
+  if (!r.reason.empty()) fields.push_back({"reason", r.reason, true});
+  if (r.fitness) fields.push_back({"fitness", Exact(*r.fitness)});
+  fields.push_back({"cells", std::to_string(r.cells)});
+  fields.push_back({"steps", std::to_string(r.steps)});
   if (r.state_hash != 0) {
-    std::printf("state_hash: %016" PRIx64 "\n", r.state_hash);
+    fields.push_back({"state_hash", lineage::Hex64(r.state_hash), true});
   }
   if (r.body) {
-    std::printf(
-        "springs: %d\nchambers: %d\nskin_edges: %d\nspread_major: %.17g\n"
-        "spread_minor: %.17g\n",
-        r.body->springs, r.body->chambers, r.body->skin_edges,
-        r.body->spread_major, r.body->spread_minor);
+    fields.push_back({"springs", std::to_string(r.body->springs)});
+    fields.push_back({"chambers", std::to_string(r.body->chambers)});
+    fields.push_back({"skin_edges", std::to_string(r.body->skin_edges)});
+    fields.push_back({"spread_major", Exact(r.body->spread_major)});
+    fields.push_back({"spread_minor", Exact(r.body->spread_minor)});
   }
+  return fields;
+}
+
+std::string JsonString(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char escape[8];
+      std::snprintf(escape, sizeof(escape), "\\u%04x", c);
+      out += escape;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+void PrintResult(const EvaluationResult& r, bool json) {
+  const std::vector<Field> fields = ResultFields(r);
+  std::string out = json ? "{\n" : "";
+  for (size_t i = 0; i < fields.size(); ++i) {
+    const Field& f = fields[i];
+    if (json) {
+      out += "  \"" + f.key +
+             "\": " + (f.text ? JsonString(f.value) : f.value) +
+             (i + 1 < fields.size() ? ",\n" : "\n");
+    } else {
+      out += f.key + ": " + f.value + "\n";
+    }
+  }
+  if (json) out += "}\n";
+  std::fputs(out.c_str(), stdout);
 }
 
 int Run(const Options& o) {
@@ -65,15 +120,7 @@ int Run(const Options& o) {
     Status status = WriteProtoFile(o.trace, trace);
     if (!status.ok()) return Fail(status.message());
   }
-  if (o.json) {
-    std::fputs(
-        SerializeProto(EvaluationResultToProto(result), ProtoFormat::kJson)
-            .c_str(),
-        stdout);
-    std::fputs("\n", stdout);
-  } else {
-    PrintResult(result);
-  }
+  PrintResult(result, o.json);
   return 0;
 }
 
@@ -98,7 +145,8 @@ Command AddSimulateCommand(CLI::App& app) {
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
   sub->add_flag("--json", options->json,
-                "Print the result as JSON (animat.v1.EvaluationResult)");
+                "Print the result as one JSON object: the same keys and "
+                "values as the text (docs/formats.md)");
   return [options] { return Run(*options); };
 }
 

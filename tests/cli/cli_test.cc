@@ -1,16 +1,25 @@
 // End-to-end tests of build/bin/animat: the real binary, real files.
 #include <sys/wait.h>
 
+#include <google/protobuf/struct.pb.h>
+#include <google/protobuf/util/json_util.h>
 #include <gtest/gtest.h>
+#include <sqlite3.h>
 
 #include <cstdio>
+#include <map>
+#include <memory>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "animat/v1/trace.pb.h"
+#include "common/evaluation/evaluator.h"
+#include "common/evaluation/model_config.h"
 #include "common/genome/genome_proto.h"
 #include "common/io/proto_file.h"
+#include "master/lineage/store.h"
 #include "tests/cli/run_animat.h"
 #include "tests/test_util.h"
 
@@ -19,6 +28,7 @@ namespace {
 
 using ::animat::testing::Animat;
 using ::animat::testing::Outcome;
+using google::protobuf::Struct;
 
 std::string Temp(const std::string& name) {
   return ::testing::TempDir() + "/animat-cli-" + name;
@@ -95,37 +105,62 @@ TEST(CliTest, SimulatePrintsStatusAndFitness) {
   EXPECT_EQ(lines[3], "steps: 800");
 }
 
-// The body's summary follows the other lines, with the values --json
-// gives; a genome that builds no body prints none.
+// "key: value" lines as a map, in order.
+std::vector<std::pair<std::string, std::string>> KeyValues(
+    const std::string& text) {
+  std::vector<std::pair<std::string, std::string>> pairs;
+  for (const std::string& line : Lines(text)) {
+    const size_t colon = line.find(": ");
+    EXPECT_NE(colon, std::string::npos) << line;
+    if (colon == std::string::npos) continue;
+    pairs.emplace_back(line.substr(0, colon), line.substr(colon + 2));
+  }
+  return pairs;
+}
+
+// simulate --json: one object whose keys and values, in order, are the
+// text output's lines; strings stay strings, numbers are numbers.
+void ExpectJsonMatchesText(const std::string& json, const std::string& text) {
+  Struct object;
+  const auto parsed =
+      google::protobuf::util::JsonStringToMessage(json, &object);
+  ASSERT_TRUE(parsed.ok()) << parsed.ToString() << "\n" << json;
+  const auto lines = KeyValues(text);
+  EXPECT_EQ(static_cast<size_t>(object.fields_size()), lines.size()) << json;
+  size_t position = 0;
+  for (const auto& [key, value] : lines) {
+    SCOPED_TRACE(key);
+    // In the text's order.
+    const size_t at = json.find("\"" + key + "\":");
+    ASSERT_NE(at, std::string::npos) << json;
+    EXPECT_GT(at, position);
+    position = at;
+    const auto field = object.fields().find(key);
+    ASSERT_NE(field, object.fields().end());
+    if (field->second.has_string_value()) {
+      EXPECT_EQ(field->second.string_value(), value);
+    } else {
+      ASSERT_TRUE(field->second.has_number_value());
+      EXPECT_EQ(field->second.number_value(), std::stod(value));
+    }
+  }
+}
+
+// The body's summary follows the other lines; a genome that builds no body
+// prints none.
 TEST(CliTest, SimulatePrintsTheBodyItBuilt) {
   const std::string genome = testing::TestData("genomes/seed-1198.json");
   const Outcome text =
       Animat("simulate --genome " + genome + " --config " + ShortConfig());
   ASSERT_EQ(text.exit_code, 0) << text.output;
-  const Outcome json = Animat("simulate --json --genome " + genome +
-                              " --config " + ShortConfig());
-  ASSERT_EQ(json.exit_code, 0) << json.output;
-  v1::EvaluationResult result;
-  ASSERT_TRUE(ParseProto(json.output, ProtoFormat::kJson, &result).ok())
-      << json.output;
-  ASSERT_TRUE(result.has_body());
-  EXPECT_EQ(result.body().cells(), 32);
-  EXPECT_GT(result.body().chambers(), 0);
-  char spreads[128];
-  std::snprintf(spreads, sizeof(spreads),
-                "spread_major: %.17g\nspread_minor: %.17g\n",
-                result.body().spread_major(), result.body().spread_minor());
-  const std::string body =
-      "springs: " + std::to_string(result.body().springs()) +
-      "\nchambers: " + std::to_string(result.body().chambers()) +
-      "\nskin_edges: " + std::to_string(result.body().skin_edges()) + "\n" +
-      spreads;
-  ASSERT_GE(text.output.size(), body.size());
-  EXPECT_EQ(text.output.substr(text.output.size() - body.size()), body)
-      << text.output;
-  EXPECT_EQ(text.output.find("state_hash: "),
-            text.output.find("springs: ") - 29)
-      << text.output;  // Right after the state hash.
+  const auto lines = KeyValues(text.output);
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : lines) keys.push_back(key);
+  EXPECT_EQ(keys,
+            (std::vector<std::string>{
+                "status", "fitness", "cells", "steps", "state_hash", "springs",
+                "chambers", "skin_edges", "spread_major", "spread_minor"}));
+  EXPECT_GT(std::stoi(lines[6].second), 0);  // Chambers.
 
   const Outcome failed =
       Animat("simulate --genome " +
@@ -144,17 +179,106 @@ TEST(CliTest, SimulateOfAFailureHasAReasonAndNoFitness) {
   EXPECT_EQ(run.output.find("fitness"), std::string::npos);
 }
 
-TEST(CliTest, SimulateJsonIsAnEvaluationResult) {
-  const Outcome run =
-      Animat("simulate --json --genome " +
-             testing::TestData("genomes/seed-2-too-few-cells.json"));
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  v1::EvaluationResult result;
-  ASSERT_TRUE(ParseProto(run.output, ProtoFormat::kJson, &result).ok())
-      << run.output;
-  EXPECT_EQ(result.status(), v1::EvaluationResult::TOO_FEW_CELLS);
-  EXPECT_EQ(result.cells(), 1);
-  EXPECT_FALSE(result.has_body());  // Development built none.
+TEST(CliTest, SimulateJsonHasTheTextsKeysAndValues) {
+  for (const std::string genome :
+       {"genomes/seed-1198.json", "genomes/seed-2-too-few-cells.json",
+        "genomes/seed-1-nonviable.json"}) {
+    SCOPED_TRACE(genome);
+    const std::string arguments = "simulate --genome " +
+                                  testing::TestData(genome) + " --config " +
+                                  ShortConfig();
+    const Outcome text = Animat(arguments);
+    const Outcome json = Animat(arguments + " --json");
+    ASSERT_EQ(text.exit_code, 0) << text.output;
+    ASSERT_EQ(json.exit_code, 0) << json.output;
+    ExpectJsonMatchesText(json.output, text.output);
+  }
+  const Outcome ok = Animat("simulate --json --genome " +
+                            testing::TestData("genomes/seed-1198.json") +
+                            " --config " + ShortConfig());
+  EXPECT_NE(ok.output.find("\"status\": \"ok\""), std::string::npos)
+      << ok.output;
+  EXPECT_NE(ok.output.find("\"steps\": 800,"), std::string::npos) << ok.output;
+  EXPECT_TRUE(std::regex_search(
+      ok.output, std::regex("\"state_hash\": \"[0-9a-f]{16}\",")))
+      << ok.output;
+}
+
+// The text and JSON of `simulate` and the lineage store's row of the same
+// evaluation (recorded as the master records a worker's result) hold the
+// same values under the same names: status in lowercase, the state hash in
+// 16 hex digits, integers as integers.
+TEST(CliTest, SimulateAndTheLineageStoreAgree) {
+  const std::string genome_path = testing::TestData("genomes/seed-1198.json");
+  const std::string arguments =
+      "simulate --genome " + genome_path + " --config " + ShortConfig();
+  const Outcome text = Animat(arguments);
+  const Outcome json = Animat(arguments + " --json");
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  ASSERT_EQ(json.exit_code, 0) << json.output;
+  ExpectJsonMatchesText(json.output, text.output);
+
+  v1::Genome message;
+  ASSERT_TRUE(ReadProtoFile(genome_path, &message).ok());
+  Result<Genome> genome = GenomeFromProto(message);
+  ASSERT_TRUE(genome.ok());
+  v1::Config config_message;
+  ASSERT_TRUE(ReadProtoFile(ShortConfig(), &config_message).ok());
+  ModelConfig config;
+  ASSERT_TRUE(ConfigFromProto(config_message, &config).ok());
+  const std::string db = Temp("agree.db");
+  for (const char* suffix : {"", "-wal", "-shm", ".lock"}) {
+    std::remove((db + suffix).c_str());
+  }
+  {
+    Result<std::unique_ptr<lineage::Store>> store = lineage::Store::Open(db);
+    ASSERT_TRUE(store.ok()) << store.status().ToString();
+    Result<int64_t> run = (*store)->CreateRun(1, v1::RunConfig(), "test");
+    ASSERT_TRUE(run.ok());
+    lineage::NewIndividual individual;
+    individual.operators = {"random"};
+    individual.genome = message;
+    ASSERT_TRUE((*store)->AddIndividuals(*run, {individual}).ok());
+    lineage::Evaluation evaluation;
+    evaluation.result = EvaluationResultToProto(Evaluate(*genome, config));
+    ASSERT_TRUE((*store)->RecordEvaluations(*run, {evaluation}).ok());
+  }
+  sqlite3* handle = nullptr;
+  ASSERT_EQ(sqlite3_open_v2(db.c_str(), &handle, SQLITE_OPEN_READONLY, nullptr),
+            SQLITE_OK);
+  sqlite3_stmt* row = nullptr;
+  ASSERT_EQ(sqlite3_prepare_v2(handle, "SELECT * FROM evaluations", -1, &row,
+                               nullptr),
+            SQLITE_OK);
+  ASSERT_EQ(sqlite3_step(row), SQLITE_ROW);
+  std::map<std::string, int> column;
+  for (int c = 0; c < sqlite3_column_count(row); ++c) {
+    column[sqlite3_column_name(row, c)] = c;
+  }
+  for (const auto& [key, value] : KeyValues(text.output)) {
+    SCOPED_TRACE(key);
+    ASSERT_TRUE(column.contains(key)) << "the store has no column " << key;
+    const int c = column[key];
+    switch (sqlite3_column_type(row, c)) {
+      case SQLITE_TEXT:
+        EXPECT_EQ(reinterpret_cast<const char*>(sqlite3_column_text(row, c)),
+                  value);
+        break;
+      case SQLITE_INTEGER:
+        EXPECT_EQ(sqlite3_column_int64(row, c), std::stoll(value));
+        break;
+      case SQLITE_FLOAT:
+        EXPECT_EQ(sqlite3_column_double(row, c), std::stod(value));
+        break;
+      default:
+        ADD_FAILURE() << "NULL or a blob in the store";
+    }
+  }
+  sqlite3_finalize(row);
+  sqlite3_close(handle);
+  for (const char* suffix : {"", "-wal", "-shm", ".lock"}) {
+    std::remove((db + suffix).c_str());
+  }
 }
 
 TEST(CliTest, SimulateWritesACompleteTrace) {
