@@ -1,5 +1,9 @@
 // A thin RAII layer over SQLite's C API: a connection and prepared
-// statements whose failures come back as Status values naming the SQL.
+// statements whose failures come back as Status values that name the file
+// and say what is wrong with it in words ("out/x.db is a directory",
+// "out/x.db: the store is read-only (file mode or directory
+// permissions)"), never SQL: with ANIMAT_DEBUG_SQL set in the
+// environment, a failed statement's SQL is appended for developers.
 //
 // Not thread-safe: one thread uses a Database and its statements.
 #ifndef ANIMAT_MASTER_LINEAGE_SQLITE_H_
@@ -22,10 +26,19 @@ namespace animat::sql {
 
 class Statement;
 
+// What the file system says is wrong with `path` as a database to open for
+// reading only or also for writing: a directory, a missing or unwritable
+// folder, a file this user may not read or write, a read-only file system.
+// OK when nothing is (also for "" and ":memory:"); kNotFound for a missing
+// file or folder, kIoError otherwise.
+Status CheckDatabasePath(const std::string& path, bool read_only);
+
 class Database {
  public:
   // Opens or creates the database file ("" or ":memory:" for a private
   // in-memory one); with `read_only`, opens an existing file for reading.
+  // Fails as CheckDatabasePath does, and when a file to write is
+  // read-only.
   static Result<std::unique_ptr<Database>> Open(const std::string& path,
                                                 bool read_only = false);
   ~Database();
@@ -74,7 +87,7 @@ class Statement {
   Statement& Bind(int index, std::optional<double> value);
 
   // Steps once: true with a row to read, false when done. Errors name the
-  // statement's SQL.
+  // database's file.
   Result<bool> Step();
   // Steps to completion (for statements without rows) and resets.
   Status Run();
@@ -89,13 +102,15 @@ class Statement {
 
  private:
   friend class Database;
-  Statement(sqlite3* db, sqlite3_stmt* statement, bool* borrowed = nullptr)
-      : db_(db), statement_(statement), borrowed_(borrowed) {}
+  Statement(sqlite3* db, sqlite3_stmt* statement, const std::string* path,
+            bool* borrowed = nullptr)
+      : db_(db), statement_(statement), path_(path), borrowed_(borrowed) {}
   // Finalizes an owned statement, resets and returns a borrowed one.
   void Release();
   sqlite3* db_;
   sqlite3_stmt* statement_;
-  bool* borrowed_;  // The Database's flag, for a borrowed statement.
+  const std::string* path_;  // The Database's, for messages.
+  bool* borrowed_;           // The Database's flag, for a borrowed statement.
 };
 
 }  // namespace animat::sql

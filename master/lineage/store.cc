@@ -68,10 +68,14 @@ Result<std::unique_ptr<Store>> Store::Open(const std::string& path) {
   int lock_fd = -1;
   const bool in_memory = path.empty() || path == ":memory:";
   if (!in_memory) {
+    // What is wrong with the store's own path, before its lock file's.
+    Status usable = sql::CheckDatabasePath(path, /*read_only=*/false);
+    if (!usable.ok()) return usable;
     const std::string lock_path = path + ".lock";
     lock_fd = open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     if (lock_fd < 0) {
-      return Status::IoError(lock_path + ": " + std::strerror(errno));
+      return Status::IoError(path + ": cannot open its lock file " + lock_path +
+                             ": " + std::strerror(errno));
     }
     if (flock(lock_fd, LOCK_EX | LOCK_NB) != 0) {
       close(lock_fd);
@@ -106,9 +110,11 @@ Result<std::unique_ptr<Store>> Store::Open(const std::string& path) {
 }
 
 Result<std::unique_ptr<Store>> Store::OpenForQueries(const std::string& path) {
-  if (access(path.c_str(), R_OK) != 0) {
+  Status usable = sql::CheckDatabasePath(path, /*read_only=*/true);
+  if (usable.code() == StatusCode::kNotFound) {
     return Status::NotFound(path + ": no such lineage store");
   }
+  if (!usable.ok()) return usable;
   Result<std::unique_ptr<sql::Database>> db =
       sql::Database::Open(path, /*read_only=*/true);
   if (!db.ok()) return db.status();
