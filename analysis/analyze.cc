@@ -1,6 +1,8 @@
 #include "analysis/analyze.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 
@@ -67,36 +69,117 @@ std::optional<Lag> LagBetween(const SideSummary& first,
 
 }  // namespace
 
-Result<Window> ChooseWindow(const Recording& recording,
-                            const AnalysisOptions& options) {
+std::optional<StepSpan> ActuationSpan(const Recording& recording, int begin,
+                                      int end) {
+  std::optional<StepSpan> span;
+  for (int k = std::max(begin + 1, 1); k < end; ++k) {
+    const double steps = recording.steps[k] - recording.steps[k - 1];
+    for (int i = 0; i < recording.cells; ++i) {
+      const double change =
+          recording.actuation(k, i) - recording.actuation(k - 1, i);
+      if (std::abs(change) > kActuationRate * steps) {
+        if (!span) span = StepSpan{recording.steps[k - 1], 0};
+        span->to = recording.steps[k];
+        break;
+      }
+    }
+  }
+  return span;
+}
+
+Result<WindowChoice> ChooseWindow(const Recording& recording,
+                                  const AnalysisOptions& options) {
   const int64_t first = recording.steps.front();
   const int64_t last = recording.steps.back();
   const int64_t from = options.from_step.value_or(first + (last - first) / 2);
   const int64_t to = options.to_step.value_or(last);
   // `to` beyond the last frame means the last (and cannot overflow).
-  Window window{FrameAtOrAfter(recording, from),
-                FrameAtOrAfter(recording, std::min(to, last) + 1)};
-  if (from > to || window.size() < 2) {
+  WindowChoice choice;
+  choice.window = Window{FrameAtOrAfter(recording, from),
+                         FrameAtOrAfter(recording, std::min(to, last) + 1)};
+  choice.rule = options.from_step || options.to_step ? WindowRule::kGiven
+                                                     : WindowRule::kSecondHalf;
+  choice.actuation = ActuationSpan(recording, 0, recording.frames());
+  if (from > to || choice.window.size() < 2) {
     return Status::InvalidArgument(
         "the window of steps [" + std::to_string(from) + ", " +
         std::to_string(to) + "] holds fewer than 2 of the frames recorded " +
         "(steps " + std::to_string(first) + " to " + std::to_string(last) +
         " every " + std::to_string(recording.stride) + ")");
   }
-  return window;
+  if (choice.rule == WindowRule::kSecondHalf && choice.actuation &&
+      !ActuationSpan(recording, choice.window.begin, choice.window.end)) {
+    // The animat stopped actuating before the second half: the window is
+    // where it actuates.
+    choice.rule = WindowRule::kActuating;
+    choice.window = Window{FrameAtOrAfter(recording, choice.actuation->from),
+                           FrameAtOrAfter(recording, choice.actuation->to + 1)};
+  }
+  return choice;
+}
+
+std::string DescribeWindow(const Analysis& a) {
+  const auto steps = [](int64_t from, int64_t to) {
+    return "motion steps " + std::to_string(from) + " to " + std::to_string(to);
+  };
+  std::string text = steps(a.from_step, a.to_step);
+  switch (a.window_rule) {
+    case WindowRule::kGiven:
+      text += " (as asked)";
+      break;
+    case WindowRule::kSecondHalf:
+      text += " (the second half of the motion)";
+      break;
+    case WindowRule::kActuating:
+      text +=
+          " (where the animat actuates: no cell does in the second half "
+          "of the motion)";
+      break;
+  }
+  if (!a.actuation) {
+    char rate[32];
+    std::snprintf(rate, sizeof(rate), "%g", kActuationRate);
+    text +=
+        "; no cell actuates anywhere in the motion (no e − c changes by "
+        "more than " +
+        std::string(rate) + " per step)";
+  } else if (!a.window_actuates) {
+    text += "; no cell actuates in it: the animat actuates in " +
+            steps(a.actuation->from, a.actuation->to) + " (--from " +
+            std::to_string(a.actuation->from) + " --to " +
+            std::to_string(a.actuation->to) + ")";
+  } else {
+    // Say so when the actuation covers less than half of the window.
+    const int covered = std::min(a.actuation->to, a.to_step) -
+                        std::max(a.actuation->from, a.from_step);
+    if (2 * covered < a.to_step - a.from_step) {
+      text += "; the animat actuates in " +
+              steps(a.actuation->from, a.actuation->to) + " only";
+    }
+  }
+  return text;
 }
 
 Result<Analysis> Analyze(const Recording& recording,
                          const AnalysisOptions& options) {
-  Result<Window> window = ChooseWindow(recording, options);
-  if (!window.ok()) return window.status();
-  Result<BodyAxes> axes = FindBodyAxes(recording, *window);
-  if (!axes.ok()) return axes.status();
-
+  Result<WindowChoice> choice = ChooseWindow(recording, options);
+  if (!choice.ok()) return choice.status();
+  const Window* window = &choice->window;
   Analysis a;
   a.window = *window;
+  a.window_rule = choice->rule;
+  a.actuation = choice->actuation;
+  a.window_actuates =
+      ActuationSpan(recording, window->begin, window->end).has_value();
   a.from_step = recording.steps[window->begin];
   a.to_step = recording.steps[window->end - 1];
+  Result<BodyAxes> axes = FindBodyAxes(recording, *window);
+  if (!axes.ok()) {
+    return Status::InvalidArgument(axes.status().message() +
+                                   "; window: " + DescribeWindow(a) +
+                                   "; --from and --to choose another");
+  }
+
   a.stride = recording.stride;
   a.dt = recording.dt;
   a.axes = std::move(axes).value();
@@ -214,6 +297,21 @@ v1::Analysis AnalysisToProto(const Analysis& a, std::optional<double> fitness) {
   v1::Analysis out;
   out.set_from_step(a.from_step);
   out.set_to_step(a.to_step);
+  switch (a.window_rule) {
+    case WindowRule::kGiven:
+      out.set_window_rule(v1::Analysis::GIVEN);
+      break;
+    case WindowRule::kSecondHalf:
+      out.set_window_rule(v1::Analysis::SECOND_HALF);
+      break;
+    case WindowRule::kActuating:
+      out.set_window_rule(v1::Analysis::ACTUATING);
+      break;
+  }
+  if (a.actuation) {
+    out.set_actuation_from_step(a.actuation->from);
+    out.set_actuation_to_step(a.actuation->to);
+  }
   out.set_stride(a.stride);
   out.set_dt(a.dt);
   out.set_cells(static_cast<int>(a.cells.size()));

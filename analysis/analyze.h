@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "analysis/activity.h"
@@ -20,12 +21,44 @@
 
 namespace animat::analysis {
 
+// A cell actuates while its e − c changes faster than this per step: 1/1000
+// of the fastest change possible (e and c each move by at most Δt = 0.05
+// per step, docs/model.md §3.1), the replay page's neutral rate.
+inline constexpr double kActuationRate = 2e-4;
+
 struct AnalysisOptions {
   // The window of motion steps analysed, both ends included (snapped to
-  // recorded frames). Defaults: the second half of the recording, where
-  // the start of motion no longer shows.
+  // recorded frames). Without either: the second half of the recording,
+  // where the start of motion no longer shows, unless no cell actuates
+  // there; then the steps where some cell actuates (WindowRule).
   std::optional<int64_t> from_step;
   std::optional<int64_t> to_step;
+};
+
+// How the window was chosen.
+enum class WindowRule {
+  kGiven,       // From the options' from_step or to_step.
+  kSecondHalf,  // The default.
+  kActuating,   // No cell actuates in the second half: the actuation span.
+};
+
+// Motion steps, both ends included.
+struct StepSpan {
+  int from = 0;
+  int to = 0;
+};
+
+// The span of frames over which some cell actuates: from the frame before
+// the first change of a cell's e − c faster than kActuationRate per step to
+// the frame after the last one, among frames [begin, end); nullopt when no
+// cell does.
+std::optional<StepSpan> ActuationSpan(const Recording& recording, int begin,
+                                      int end);
+
+struct WindowChoice {
+  Window window;
+  WindowRule rule = WindowRule::kSecondHalf;
+  std::optional<StepSpan> actuation;  // Over the whole recording.
 };
 
 struct SideSummary {
@@ -53,6 +86,9 @@ struct Lag {
 
 struct Analysis {
   Window window;
+  WindowRule window_rule = WindowRule::kSecondHalf;
+  std::optional<StepSpan> actuation;  // Over the whole recording.
+  bool window_actuates = false;       // Some cell actuates in the window.
   int from_step = 0;
   int to_step = 0;
   int stride = 1;
@@ -76,13 +112,21 @@ struct Analysis {
 
 // The window for `options` (see AnalysisOptions). kInvalidArgument when it
 // holds fewer than 2 frames.
-Result<Window> ChooseWindow(const Recording& recording,
-                            const AnalysisOptions& options);
+Result<WindowChoice> ChooseWindow(const Recording& recording,
+                                  const AnalysisOptions& options);
 
 // kInvalidArgument, saying why, for a window of fewer than 2 frames or a
-// body that does not move.
+// body that does not move (the message then names the window, as
+// DescribeWindow does).
 Result<Analysis> Analyze(const Recording& recording,
                          const AnalysisOptions& options);
+
+// The window analysed and why, for people: "motion steps 3000 to 6000 (the
+// second half of the motion)", with what the animat's actuation does
+// there when that explains a result: "no cell actuates anywhere in the
+// motion ...", "no cell actuates in it; the animat actuates in motion
+// steps 0 to 455".
+std::string DescribeWindow(const Analysis& analysis);
 
 // As written by `animat analyze`; `fitness` is the evaluation's.
 v1::Analysis AnalysisToProto(const Analysis& analysis,

@@ -42,6 +42,10 @@ int Run(const Options& o) {
   Status status =
       WriteProtoFile(o.output, analysis::AnalysisToProto(*result, fitness));
   if (!status.ok()) return Fail(status.message());
+  // Which window, and why: standard output unless the analysis is there.
+  const std::string window =
+      "window: " + analysis::DescribeWindow(*result) + "\n";
+  std::fputs(window.c_str(), o.output != "-" ? stdout : stderr);
   if (o.output != "-") {
     std::fputs(analysis::StrategySummary(result->strategy).c_str(), stdout);
   }
@@ -58,7 +62,8 @@ Command AddAnalyzeCommand(CLI::App& app) {
       "and swimming strategy of an animat (docs/analysis.md)");
   AddAnimatSourceOptions(sub, &o->source);
   sub->add_option("--from", o->from,
-                  "First motion step analysed (default: half way)");
+                  "First motion step analysed (default: half way, or where "
+                  "the animat actuates; docs/analysis.md)");
   sub->add_option("--to", o->to, "Last motion step analysed (default: last)");
   sub->add_option("-o,--output", o->output,
                   "Output file (.json, .txtpb); - for JSON on standard output "

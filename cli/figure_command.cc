@@ -77,6 +77,14 @@ Result<Analysed> LoadAndAnalyse(const Options& o) {
   return Analysed{std::move(recording).value(), std::move(result).value()};
 }
 
+// Writes a figure of one animat and says which window it shows.
+int WriteAnimatFigure(const Options& o, const Analysed& a,
+                      const std::string& svg) {
+  if (Write(o.output, svg) != 0) return 1;
+  std::printf("window: %s\n", analysis::DescribeWindow(a.analysis).c_str());
+  return 0;
+}
+
 int Strip(const Options& o) {
   Result<Analysed> a = LoadAndAnalyse(o);
   if (!a.ok()) return Fail(a.status().message());
@@ -84,14 +92,14 @@ int Strip(const Options& o) {
       a->recording, a->analysis,
       {.snapshots = o.snapshots, .start_step = o.start});
   if (!svg.ok()) return Fail(svg.status().message());
-  return Write(o.output, *svg);
+  return WriteAnimatFigure(o, *a, *svg);
 }
 
 int Activity(const Options& o) {
   Result<Analysed> a = LoadAndAnalyse(o);
   if (!a.ok()) return Fail(a.status().message());
-  return Write(
-      o.output,
+  return WriteAnimatFigure(
+      o, *a,
       figures::LinePlotSvg(figures::ActivityPlot(
           a->analysis, figures::DefaultStepRange(a->analysis, o.cycles))));
 }
@@ -105,7 +113,7 @@ int Cells(const Options& o) {
       figures::CellsPlot(a->recording, a->analysis, cells,
                          figures::DefaultStepRange(a->analysis, o.cycles));
   if (!plot.ok()) return Fail(plot.status().message());
-  return Write(o.output, figures::LinePlotSvg(*plot));
+  return WriteAnimatFigure(o, *a, figures::LinePlotSvg(*plot));
 }
 
 struct StoreRun {
@@ -272,7 +280,8 @@ Command AddFigureCommand(CLI::App& app) {
   auto animat = [&](CLI::App* sub) {
     AddAnimatSourceOptions(sub, &o->source);
     sub->add_option("--from", o->from,
-                    "First motion step analysed (default: half way)");
+                    "First motion step analysed (default: half way, or where "
+                    "the animat actuates; docs/analysis.md)");
     sub->add_option("--to", o->to, "Last motion step analysed (default: last)");
     output(sub);
   };

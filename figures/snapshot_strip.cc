@@ -29,8 +29,11 @@ Result<std::vector<int>> CycleFrames(const Recording& recording,
                                      const Analysis& analysis,
                                      const StripOptions& options) {
   if (!analysis.period_steps) {
+    // Another window helps only an animat that actuates somewhere.
     return Status::InvalidArgument(
-        "the actuation has no dominant period, so there is no cycle to show");
+        "the actuation has no dominant period in " +
+        analysis::DescribeWindow(analysis) + ", so there is no cycle to show" +
+        (analysis.actuation ? "; --from and --to choose another window" : ""));
   }
   if (options.snapshots < 1) {
     return Status::InvalidArgument("at least one snapshot is needed");
@@ -45,7 +48,9 @@ Result<std::vector<int>> CycleFrames(const Recording& recording,
         " steps from step " + std::to_string(start) +
         " does not fit in the motion recorded (steps " +
         std::to_string(recording.steps.front()) + " to " +
-        std::to_string(recording.steps.back()) + ")");
+        std::to_string(recording.steps.back()) +
+        "); window: " + analysis::DescribeWindow(analysis) +
+        "; --start, --from and --to choose another");
   }
   if (options.snapshots > last - first) {
     return Status::InvalidArgument(

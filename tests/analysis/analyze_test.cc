@@ -144,6 +144,94 @@ TEST(AnalyzeTest, TheProtoHoldsEveryCellAndTheLags) {
   EXPECT_EQ(proto.front().cells() + proto.back().cells(), 8);
 }
 
+TEST(AnalyzeTest, TheDefaultWindowIsTheSecondHalfWhereTheAnimatActuates) {
+  const Recording r = Record(Wave(kPi / 2, 0));
+  Result<Analysis> a = Analyze(r, {});
+  ASSERT_TRUE(a.ok()) << a.status().ToString();
+  EXPECT_EQ(a->window_rule, WindowRule::kSecondHalf);
+  EXPECT_EQ(a->from_step, 2000);
+  EXPECT_EQ(a->to_step, 4000);
+  ASSERT_TRUE(a->actuation.has_value());
+  EXPECT_EQ(a->actuation->from, 0);
+  EXPECT_EQ(a->actuation->to, 4000);
+  EXPECT_EQ(DescribeWindow(*a),
+            "motion steps 2000 to 4000 (the second half of the motion)");
+  const v1::Analysis proto = AnalysisToProto(*a, std::nullopt);
+  EXPECT_EQ(proto.window_rule(), v1::Analysis::SECOND_HALF);
+  EXPECT_EQ(proto.actuation_to_step(), 4000);
+}
+
+// An animat whose actuation stops before the second half of the motion
+// (here at step 1000) is analysed where it actuates, and says so.
+TEST(AnalyzeTest, AnAnimatStillInTheSecondHalfIsAnalysedWhereItActuates) {
+  testing::SyntheticSwimmer swimmer = Wave(kPi / 2, 0);
+  swimmer.still_after = 1000;
+  swimmer.stride = 4;
+  const Recording r = Record(swimmer);
+  Result<Analysis> a = Analyze(r, {});
+  ASSERT_TRUE(a.ok()) << a.status().ToString();
+  EXPECT_EQ(a->window_rule, WindowRule::kActuating);
+  EXPECT_EQ(a->from_step, 0);
+  EXPECT_EQ(a->to_step, 1000);
+  EXPECT_TRUE(a->window_actuates);
+  ASSERT_TRUE(a->period_steps.has_value());
+  EXPECT_NEAR(*a->period_steps, 80, 0.5);
+  EXPECT_GT(a->mean_activity, 0.01);
+  EXPECT_EQ(DescribeWindow(*a),
+            "motion steps 0 to 1000 (where the animat actuates: no cell does "
+            "in the second half of the motion)");
+  EXPECT_EQ(AnalysisToProto(*a, std::nullopt).window_rule(),
+            v1::Analysis::ACTUATING);
+
+  // A window asked for is kept, and says where the actuation is.
+  Result<Analysis> asked =
+      Analyze(r, {.from_step = 2000, .to_step = std::nullopt});
+  ASSERT_TRUE(asked.ok()) << asked.status().ToString();
+  EXPECT_EQ(asked->window_rule, WindowRule::kGiven);
+  EXPECT_FALSE(asked->window_actuates);
+  EXPECT_FALSE(asked->period_steps.has_value());
+  EXPECT_EQ(asked->mean_activity, 0);
+  EXPECT_EQ(DescribeWindow(*asked),
+            "motion steps 2000 to 4000 (as asked); no cell actuates in it: the "
+            "animat actuates in motion steps 0 to 1000 (--from 0 --to 1000)");
+
+  // Actuation over less than half of the window is pointed out.
+  Result<Analysis> wide = Analyze(r, {.from_step = 0, .to_step = std::nullopt});
+  ASSERT_TRUE(wide.ok());
+  EXPECT_EQ(DescribeWindow(*wide),
+            "motion steps 0 to 4000 (as asked); the animat actuates in motion "
+            "steps 0 to 1000 only");
+}
+
+TEST(AnalyzeTest, AnAnimatThatNeverActuatesIsSaidToBeSo) {
+  testing::SyntheticSwimmer swimmer;
+  swimmer.amplitude.assign(8, 0.0);
+  const Recording r = Record(swimmer);
+  Result<Analysis> a = Analyze(r, {});
+  ASSERT_TRUE(a.ok()) << a.status().ToString();
+  EXPECT_EQ(a->window_rule, WindowRule::kSecondHalf);
+  EXPECT_FALSE(a->actuation.has_value());
+  EXPECT_EQ(DescribeWindow(*a),
+            "motion steps 2000 to 4000 (the second half of the motion); no "
+            "cell actuates anywhere in the motion (no e − c changes by more "
+            "than 0.0002 per step)");
+  EXPECT_FALSE(AnalysisToProto(*a, std::nullopt).has_actuation_from_step());
+}
+
+TEST(AnalyzeTest, ABodyThatDoesNotMoveNamesTheWindow) {
+  testing::SyntheticSwimmer swimmer;
+  swimmer.speed = 0;
+  swimmer.breathing = 0;
+  const Recording r = Record(swimmer);
+  Result<Analysis> a = Analyze(r, {});
+  ASSERT_FALSE(a.ok());
+  EXPECT_NE(a.status().message().find(
+                "window: motion steps 2000 to 4000 (the second half of the "
+                "motion); --from and --to choose another"),
+            std::string::npos)
+      << a.status().message();
+}
+
 TEST(AnalyzeTest, RejectsAWindowWithoutFrames) {
   testing::SyntheticSwimmer swimmer;
   swimmer.steps = 100;

@@ -11,6 +11,7 @@
 #ifndef ANIMAT_TESTS_ANALYSIS_SYNTHETIC_SWIMMER_H_
 #define ANIMAT_TESTS_ANALYSIS_SYNTHETIC_SWIMMER_H_
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -30,7 +31,8 @@ struct SyntheticSwimmer {
   double breathing = 0.05;        // Relative size change, at the same period.
   std::vector<double> amplitude;  // Per cell; default 0.3 each.
   std::vector<double> phase;      // Per cell; default 0 each.
-  int steps = 4000;  // Motion steps; frames at 0, stride, ..., steps.
+  int still_after = -1;  // From this step on e − c holds (-1: never).
+  int steps = 4000;      // Motion steps; frames at 0, stride, ..., steps.
   int stride = 1;
   double dt = 0.05;
   double actuation_max = 0.2;
@@ -98,8 +100,10 @@ struct SyntheticSwimmer {
         frame->add_y(cy + std::sin(angle) * bx + std::cos(angle) * by);
         frame->add_vx(0);
         frame->add_vy(0);
+        const int acting =
+            still_after >= 0 ? std::min(step, still_after) : step;
         const double a =
-            Amplitude(i) * std::cos(kTwoPi * step / period - Phase(i));
+            Amplitude(i) * std::cos(kTwoPi * acting / period - Phase(i));
         frame->add_expand(0.5 + a / 2);
         frame->add_contract(0.5 - a / 2);
       }

@@ -75,6 +75,7 @@ TEST(AnalysisCliTest, AnalyzeOfAGenomeMatchesAnalyzeOfItsTrace) {
   const v1::Analysis a = ReadAnalysis(Temp("genome.json"));
   EXPECT_EQ(a.from_step(), 600);  // The second half by default.
   EXPECT_EQ(a.to_step(), 1200);
+  EXPECT_EQ(a.window_rule(), v1::Analysis::SECOND_HALF);
   EXPECT_EQ(a.stride(), 1);
   EXPECT_EQ(a.cells(), 32);
   EXPECT_EQ(a.cell_size(), 32);
@@ -97,6 +98,90 @@ TEST(AnalysisCliTest, TheWindowAndSpacingAreChosen) {
   EXPECT_EQ(a.from_step(), 100);
   EXPECT_EQ(a.to_step(), 1000);
   EXPECT_EQ(a.stride(), 4);
+  EXPECT_EQ(a.window_rule(), v1::Analysis::GIVEN);
+  EXPECT_EQ(
+      run.output.rfind("window: motion steps 100 to 1000 (as asked)\n", 0), 0u)
+      << run.output;
+}
+
+// An evolved animat whose actuation dies away within ~540 motion steps
+// (bench/data/accuracy's evolved-dn10-g039-38539, under its drag): with
+// 1200 motion steps the second half holds no actuation.
+TEST(AnalysisCliTest, AnAnimatThatStopsActuatingIsAnalysedWhereItActuates) {
+  const std::string config = Temp("stops.txtpb");
+  ASSERT_TRUE(
+      WriteFile(config, "physics { drag_normal: 10 drag_tangential: 0.05 }\n" +
+                            std::string(kShortModel))
+          .ok());
+  const std::string source =
+      "--genome " + testing::TestData("genomes/evolved-stops-actuating.json") +
+      " --config " + config;
+  const Outcome analyze =
+      Animat("analyze " + source + " -o " + Temp("stops.json"));
+  ASSERT_EQ(analyze.exit_code, 0) << analyze.output;
+  const v1::Analysis a = ReadAnalysis(Temp("stops.json"));
+  EXPECT_EQ(a.window_rule(), v1::Analysis::ACTUATING);
+  EXPECT_EQ(a.from_step(), 0);
+  EXPECT_LT(a.to_step(), 600);
+  EXPECT_EQ(a.actuation_to_step(), a.to_step());
+  EXPECT_TRUE(a.has_period_steps());
+  EXPECT_GT(a.mean_activity(), 0);
+  const std::string window =
+      "window: motion steps 0 to " + std::to_string(a.to_step()) +
+      " (where the animat actuates: no cell does in the second half of the "
+      "motion)\n";
+  EXPECT_EQ(analyze.output.rfind(window, 0), 0u) << analyze.output;
+
+  // The README's strip of such an animat: a cycle where it actuates.
+  const Outcome strip =
+      Animat("figure strip " + source + " -o " + Temp("stops.svg"));
+  ASSERT_EQ(strip.exit_code, 0) << strip.output;
+  EXPECT_EQ(strip.output, window);
+  EXPECT_EQ(ParseSvg(Temp("stops.svg")).FindAll("g", "snapshot").size(), 6u);
+
+  // A window without actuation (what is left is slower than 2e-4 per step)
+  // says where the actuation is.
+  const Outcome late =
+      Animat("analyze " + source + " --from 600 -o " + Temp("late.json"));
+  ASSERT_EQ(late.exit_code, 0) << late.output;
+  EXPECT_EQ(late.output.rfind(
+                "window: motion steps 600 to 1200 (as asked); no cell "
+                "actuates in it: the animat actuates in motion steps 0 to " +
+                    std::to_string(a.to_step()) + " (--from 0 --to " +
+                    std::to_string(a.to_step()) + ")\n",
+                0),
+            0u)
+      << late.output;
+}
+
+// A quickstart individual that swam 3.4 radii in its run without ever
+// actuating (its e − c is constant through the motion): zero activity, and
+// why.
+TEST(AnalysisCliTest, AnAnimatThatNeverActuatesIsSaidToBeSo) {
+  const std::string source =
+      "--genome " + testing::TestData("genomes/quickstart-no-actuation.json") +
+      " --config " + ShortConfig();
+  const Outcome analyze =
+      Animat("analyze " + source + " -o " + Temp("still.json"));
+  ASSERT_EQ(analyze.exit_code, 0) << analyze.output;
+  const std::string window =
+      "window: motion steps 600 to 1200 (the second half of the motion); no "
+      "cell actuates anywhere in the motion (no e − c changes by more than "
+      "0.0002 per step)\n";
+  EXPECT_EQ(analyze.output.rfind(window, 0), 0u) << analyze.output;
+  const v1::Analysis a = ReadAnalysis(Temp("still.json"));
+  EXPECT_EQ(a.window_rule(), v1::Analysis::SECOND_HALF);
+  EXPECT_FALSE(a.has_actuation_from_step());
+  EXPECT_EQ(a.mean_activity(), 0);
+
+  const Outcome strip =
+      Animat("figure strip " + source + " -o " + Temp("still.svg"));
+  EXPECT_EQ(strip.exit_code, 1);
+  EXPECT_EQ(strip.output,
+            "animat: the actuation has no dominant period in motion steps 600 "
+            "to 1200 (the second half of the motion); no cell actuates "
+            "anywhere in the motion (no e − c changes by more than 0.0002 per "
+            "step), so there is no cycle to show\n");
 }
 
 TEST(AnalysisCliTest, BadInputIsAClearError) {

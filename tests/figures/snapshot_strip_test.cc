@@ -94,14 +94,51 @@ TEST(SnapshotStripTest, NeedsAPeriodAndACycleThatFits) {
   testing::SyntheticSwimmer still;
   still.amplitude.assign(8, 0.0);
   const Swim no_period = Analyse(still);
-  EXPECT_FALSE(
-      SnapshotStripSvg(no_period.recording, no_period.analysis, {}).ok());
+  Result<std::string> none =
+      SnapshotStripSvg(no_period.recording, no_period.analysis, {});
+  ASSERT_FALSE(none.ok());
+  // Which window, and that no other would do: nothing actuates.
+  EXPECT_EQ(none.status().message(),
+            "the actuation has no dominant period in motion steps 2000 to 4000 "
+            "(the second half of the motion); no cell actuates anywhere in the "
+            "motion (no e − c changes by more than 0.0002 per step), so there "
+            "is no cycle to show");
 
   const Swim s = Analyse(testing::SyntheticSwimmer{});
-  EXPECT_FALSE(SnapshotStripSvg(s.recording, s.analysis, Strip(6, 3950)).ok());
+  Result<std::string> late =
+      SnapshotStripSvg(s.recording, s.analysis, Strip(6, 3950));
+  ASSERT_FALSE(late.ok());
+  EXPECT_NE(late.status().message().find(
+                "window: motion steps 2000 to 4000 (the second half of the "
+                "motion); --start, --from and --to choose another"),
+            std::string::npos)
+      << late.status().message();
   EXPECT_TRUE(SnapshotStripSvg(s.recording, s.analysis, Strip(6, 3900)).ok());
   EXPECT_FALSE(SnapshotStripSvg(s.recording, s.analysis, Strip(0)).ok());
   EXPECT_FALSE(SnapshotStripSvg(s.recording, s.analysis, Strip(81)).ok());
+}
+
+// An animat that stops actuating before the second half of its motion has
+// its cycle shown where it actuates; in a window asked for without
+// actuation, the error says where the actuation is.
+TEST(SnapshotStripTest, AnAnimatThatStopsActuatingShowsACycleWhereItActuates) {
+  testing::SyntheticSwimmer stops;
+  stops.still_after = 1000;
+  const Swim s = Analyse(stops);
+  EXPECT_EQ(s.analysis.from_step, 0);
+  Result<std::string> svg = SnapshotStripSvg(s.recording, s.analysis, {});
+  ASSERT_TRUE(svg.ok()) << svg.status().ToString();
+
+  Result<analysis::Analysis> asked = analysis::Analyze(
+      s.recording, {.from_step = 2000, .to_step = std::nullopt});
+  ASSERT_TRUE(asked.ok()) << asked.status().ToString();
+  Result<std::string> none = SnapshotStripSvg(s.recording, *asked, {});
+  ASSERT_FALSE(none.ok());
+  EXPECT_EQ(none.status().message(),
+            "the actuation has no dominant period in motion steps 2000 to 4000 "
+            "(as asked); no cell actuates in it: the animat actuates in motion "
+            "steps 0 to 1000 (--from 0 --to 1000), so there is no cycle to "
+            "show; --from and --to choose another window");
 }
 
 }  // namespace
