@@ -15,6 +15,7 @@
 
 #include "common/evaluation/model_config.h"
 #include "common/io/proto_file.h"
+#include "common/protocol/genome_wire.h"
 #include "common/protocol/protocol.h"
 #include "fuzz/fuzz_common.h"
 

@@ -12,6 +12,7 @@
 #include "common/evaluation/model_config.h"
 #include "common/genome/genome_proto.h"
 #include "common/grn/network.h"
+#include "common/protocol/genome_wire.h"
 #include "common/protocol/protocol.h"
 #include "fuzz/fuzz_common.h"
 

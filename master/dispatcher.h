@@ -30,6 +30,7 @@
 #include "common/base/log.h"
 #include "common/base/status.h"
 #include "common/evaluation/model_config.h"
+#include "common/protocol/genome_wire.h"
 #include "common/protocol/protocol.h"
 #include "master/work_encoder.h"
 

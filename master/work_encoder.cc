@@ -2,8 +2,14 @@
 
 #include <algorithm>
 
+#include <google/protobuf/io/coded_stream.h>
+
+#include "common/protocol/protocol.h"
+
 namespace animat {
 namespace {
+
+using google::protobuf::io::CodedOutputStream;
 
 // Wire types and field numbers of animat/v1/protocol.proto.
 constexpr uint32_t kVarint = 0;
@@ -17,23 +23,30 @@ constexpr uint32_t kItemIndividual = 1;
 constexpr uint32_t kItemGenome = 2;
 constexpr uint32_t kItemGenomeHash = 3;
 
+// The writers are protobuf's (CodedOutputStream), into a few bytes on the
+// stack that are then appended: the items themselves are copied once.
+void Append(const uint8_t* begin, const uint8_t* end, std::string* out) {
+  out->append(reinterpret_cast<const char*>(begin),
+              static_cast<size_t>(end - begin));
+}
+
 void AppendVarint(uint64_t value, std::string* out) {
-  while (value >= 0x80) {
-    out->push_back(static_cast<char>((value & 0x7F) | 0x80));
-    value >>= 7;
-  }
-  out->push_back(static_cast<char>(value));
+  uint8_t bytes[10];
+  Append(bytes, CodedOutputStream::WriteVarint64ToArray(value, bytes), out);
 }
 
 void AppendTag(uint32_t field, uint32_t wire_type, std::string* out) {
-  AppendVarint((field << 3) | wire_type, out);
+  uint8_t bytes[5];
+  Append(bytes,
+         CodedOutputStream::WriteTagToArray((field << 3) | wire_type, bytes),
+         out);
 }
 
 void AppendFixed64(uint32_t field, uint64_t value, std::string* out) {
   AppendTag(field, kFixed64, out);
-  for (int i = 0; i < 8; ++i) {
-    out->push_back(static_cast<char>((value >> (8 * i)) & 0xFF));
-  }
+  uint8_t bytes[8];
+  Append(bytes, CodedOutputStream::WriteLittleEndian64ToArray(value, bytes),
+         out);
 }
 
 void AppendBytes(uint32_t field, std::string_view bytes, std::string* out) {

@@ -14,7 +14,7 @@
 #include <string>
 #include <string_view>
 
-#include "common/protocol/protocol.h"
+#include "common/protocol/genome_wire.h"
 
 namespace animat {
 

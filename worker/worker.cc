@@ -9,6 +9,7 @@
 #include <zmq.hpp>
 
 #include "common/evaluation/model_config.h"
+#include "common/protocol/genome_wire.h"
 #include "common/protocol/protocol.h"
 #include "common/protocol/zmq_poll.h"
 #include "worker/evaluation_pool.h"

@@ -3,57 +3,42 @@
 // GenomeToProto(genome) (tests/dispatch/genome_encoder_test.cc compares
 // them): fields in field order, proto3 defaults (0, and doubles whose bits
 // are all 0) left out, negative int32 and enum values as 10-byte varints.
+// The tags, varints and fixed64s are protobuf's own CodedOutputStream
+// writers, into a buffer sized for the worst case.
 #include <cstring>
 
+#include <google/protobuf/io/coded_stream.h>
+
 #include "common/base/hash.h"
-#include "common/protocol/protocol.h"
+#include "common/protocol/genome_wire.h"
 
 namespace animat::protocol {
 namespace {
 
-// animat.v1.Element's field tags (field number << 3 | wire type).
-constexpr uint8_t kTypeTag = 1 << 3 | 0;     // varint
-constexpr uint8_t kSignTag = 2 << 3 | 0;     // varint
-constexpr uint8_t kXTag = 3 << 3 | 1;        // fixed64
-constexpr uint8_t kYTag = 4 << 3 | 1;        // fixed64
-constexpr uint8_t kChannelTag = 5 << 3 | 0;  // varint
-// animat.v1.Genome.elements: field 1, length-delimited.
-constexpr uint8_t kElementsTag = 1 << 3 | 2;
+using google::protobuf::io::CodedOutputStream;
+
+// Wire types.
+constexpr uint32_t kVarint = 0;
+constexpr uint32_t kFixed64 = 1;
+constexpr uint32_t kLengthDelimited = 2;
+
+constexpr uint32_t Tag(uint32_t field, uint32_t wire_type) {
+  return field << 3 | wire_type;
+}
+
+// animat.v1.Element's fields.
+constexpr uint32_t kTypeTag = Tag(1, kVarint);
+constexpr uint32_t kSignTag = Tag(2, kVarint);
+constexpr uint32_t kXTag = Tag(3, kFixed64);
+constexpr uint32_t kYTag = Tag(4, kFixed64);
+constexpr uint32_t kChannelTag = Tag(5, kVarint);
+// animat.v1.Genome.elements.
+constexpr uint32_t kElementsTag = Tag(1, kLengthDelimited);
 
 // animat.v1.Element.Channel values of the first input and output channels
 // (genome_proto.cc maps the same way).
 constexpr int kFirstInput = v1::Element::MATERNAL_0;
 constexpr int kFirstOutput = v1::Element::DIVIDE;
-
-// An int32 or enum field's varint: negative values are sign-extended to 64
-// bits, as protobuf writes them.
-uint64_t Int32Varint(int32_t value) {
-  return static_cast<uint64_t>(static_cast<int64_t>(value));
-}
-
-size_t VarintSize(uint64_t value) {
-  size_t size = 1;
-  while (value >= 0x80) {
-    value >>= 7;
-    ++size;
-  }
-  return size;
-}
-
-// Writers at a cursor into a buffer sized for the worst case.
-char* PutVarint(uint64_t value, char* out) {
-  while (value >= 0x80) {
-    *out++ = static_cast<char>(value | 0x80);
-    value >>= 7;
-  }
-  *out++ = static_cast<char>(value);
-  return out;
-}
-
-char* PutFixed64(uint64_t bits, char* out) {
-  for (int i = 0; i < 8; ++i) *out++ = static_cast<char>(bits >> (8 * i));
-  return out;
-}
 
 uint64_t Bits(double value) {
   uint64_t bits;
@@ -81,14 +66,33 @@ ElementFields Fields(const Element& e) {
   return f;
 }
 
+// Every tag above is one byte.
 size_t BodySize(const ElementFields& f) {
   size_t size = 0;
-  if (f.type != 0) size += 1 + VarintSize(Int32Varint(f.type));
-  if (f.sign != 0) size += 1 + VarintSize(Int32Varint(f.sign));
+  if (f.type != 0)
+    size += 1 + CodedOutputStream::VarintSize32SignExtended(f.type);
+  if (f.sign != 0)
+    size += 1 + CodedOutputStream::VarintSize32SignExtended(f.sign);
   if (f.x != 0) size += 1 + 8;
   if (f.y != 0) size += 1 + 8;
-  if (f.channel != 0) size += 1 + VarintSize(Int32Varint(f.channel));
+  if (f.channel != 0) {
+    size += 1 + CodedOutputStream::VarintSize32SignExtended(f.channel);
+  }
   return size;
+}
+
+// An int32 or enum field, left out at 0.
+uint8_t* PutInt32(uint32_t tag, int32_t value, uint8_t* out) {
+  if (value == 0) return out;
+  out = CodedOutputStream::WriteTagToArray(tag, out);
+  return CodedOutputStream::WriteVarint32SignExtendedToArray(value, out);
+}
+
+// A double field by its bits, left out when they are all 0.
+uint8_t* PutDouble(uint32_t tag, uint64_t bits, uint8_t* out) {
+  if (bits == 0) return out;
+  out = CodedOutputStream::WriteTagToArray(tag, out);
+  return CodedOutputStream::WriteLittleEndian64ToArray(bits, out);
 }
 
 }  // namespace
@@ -98,32 +102,18 @@ SerializedGenome SerializeGenome(const Genome& genome) {
   constexpr size_t kMaxElementBytes = 53;
   SerializedGenome out;
   out.bytes.resize(genome.elements.size() * kMaxElementBytes);
-  char* const begin = out.bytes.data();
-  char* p = begin;
+  uint8_t* const begin = reinterpret_cast<uint8_t*>(out.bytes.data());
+  uint8_t* p = begin;
   for (const Element& e : genome.elements) {
     const ElementFields f = Fields(e);
-    *p++ = static_cast<char>(kElementsTag);
-    p = PutVarint(BodySize(f), p);
-    if (f.type != 0) {
-      *p++ = static_cast<char>(kTypeTag);
-      p = PutVarint(Int32Varint(f.type), p);
-    }
-    if (f.sign != 0) {
-      *p++ = static_cast<char>(kSignTag);
-      p = PutVarint(Int32Varint(f.sign), p);
-    }
-    if (f.x != 0) {
-      *p++ = static_cast<char>(kXTag);
-      p = PutFixed64(f.x, p);
-    }
-    if (f.y != 0) {
-      *p++ = static_cast<char>(kYTag);
-      p = PutFixed64(f.y, p);
-    }
-    if (f.channel != 0) {
-      *p++ = static_cast<char>(kChannelTag);
-      p = PutVarint(Int32Varint(f.channel), p);
-    }
+    p = CodedOutputStream::WriteTagToArray(kElementsTag, p);
+    p = CodedOutputStream::WriteVarint32ToArray(
+        static_cast<uint32_t>(BodySize(f)), p);
+    p = PutInt32(kTypeTag, f.type, p);
+    p = PutInt32(kSignTag, f.sign, p);
+    p = PutDouble(kXTag, f.x, p);
+    p = PutDouble(kYTag, f.y, p);
+    p = PutInt32(kChannelTag, f.channel, p);
   }
   out.bytes.resize(static_cast<size_t>(p - begin));
   StateHash hash;

@@ -3,33 +3,9 @@
 #include <cmath>
 #include <utility>
 
-#include <google/protobuf/io/coded_stream.h>
-#include <google/protobuf/io/zero_copy_stream_impl_lite.h>
-
-#include "common/base/hash.h"
 #include "common/protocol/build_info.h"
 
 namespace animat::protocol {
-namespace {
-
-std::string Deterministic(const google::protobuf::MessageLite& message) {
-  std::string out;
-  {
-    google::protobuf::io::StringOutputStream stream(&out);
-    google::protobuf::io::CodedOutputStream coded(&stream);
-    coded.SetSerializationDeterministic(true);
-    message.SerializeToCodedStream(&coded);
-  }
-  return out;
-}
-
-uint64_t Fingerprint(const std::string& bytes) {
-  StateHash hash;
-  hash.AddBytes(bytes);
-  return hash.value();
-}
-
-}  // namespace
 
 const std::string& BuildId() {
   static const std::string id = std::string("animat ") + kBuildVersion + " " +
@@ -105,26 +81,6 @@ Status ValidateResult(const v1::EvaluationResult& r) {
     }
   }
   return Status::Ok();
-}
-
-uint64_t ConfigHash(const v1::Config& config) {
-  return Fingerprint(Deterministic(config));
-}
-
-uint64_t MessageHash(const google::protobuf::MessageLite& message) {
-  return Fingerprint(Deterministic(message));
-}
-
-uint64_t GenomeHash(const v1::Genome& genome) {
-  return Fingerprint(Deterministic(genome));
-}
-
-SerializedGenome SerializeGenome(const v1::Genome& genome) {
-  SerializedGenome out;
-  out.bytes = Deterministic(genome);
-  out.hash = Fingerprint(out.bytes);
-  out.elements = genome.elements_size();
-  return out;
 }
 
 const char* BodyName(const v1::Envelope& envelope) {

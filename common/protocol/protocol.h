@@ -1,6 +1,7 @@
 // The master-worker protocol in one place (zguide's mdp.h habit): version,
 // timing and size limits, the build id, and encoding and decoding of the
-// single-frame Envelope messages (docs/protocol.md).
+// single-frame Envelope messages (docs/protocol.md). The genome's bytes and
+// the fingerprints are genome_wire.h's.
 //
 // Decoding takes bytes from the network: it never crashes and never
 // throws; anything malformed comes back as a Status saying what is wrong.
@@ -13,14 +14,9 @@
 #include <string>
 #include <string_view>
 
-#include <google/protobuf/message_lite.h>
-
-#include "animat/v1/config.pb.h"
-#include "animat/v1/genome.pb.h"
 #include "animat/v1/protocol.pb.h"
 #include "animat/v1/trace.pb.h"
 #include "common/base/status.h"
-#include "common/genome/genome.h"
 
 namespace animat::protocol {
 
@@ -72,26 +68,6 @@ Result<v1::Envelope> Decode(std::string_view frame);
 // if it carries a body summary, counts >= 0 and spreads finite with
 // spread_major >= spread_minor >= 0. The message names the first fault.
 Status ValidateResult(const v1::EvaluationResult& result);
-
-// 64-bit fingerprints of the deterministic serialisation (FNV-1a): the
-// config a session runs with, the genome an individual carries.
-uint64_t ConfigHash(const v1::Config& config);
-uint64_t GenomeHash(const v1::Genome& genome);
-// The same for any message.
-uint64_t MessageHash(const google::protobuf::MessageLite& message);
-
-// A genome's deterministic serialisation with its GenomeHash, made once
-// for whoever needs both (the lineage store, the dispatcher).
-struct SerializedGenome {
-  std::string bytes;
-  uint64_t hash = 0;
-  int elements = 0;  // The genome's length.
-};
-SerializedGenome SerializeGenome(const v1::Genome& genome);
-// The same bytes, hash and length as SerializeGenome(GenomeToProto(genome)),
-// written directly without building the message (the master makes
-// thousands of genomes a second; genome_encoder.cc).
-SerializedGenome SerializeGenome(const Genome& genome);
 
 // "hello", "work", ... for log lines; "none" without a body.
 const char* BodyName(const v1::Envelope& envelope);

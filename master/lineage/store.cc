@@ -12,7 +12,7 @@
 
 #include <google/protobuf/text_format.h>
 
-#include "common/protocol/protocol.h"
+#include "common/protocol/genome_wire.h"
 #include "master/lineage/schema.h"
 
 namespace animat::lineage {

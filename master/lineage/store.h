@@ -24,7 +24,7 @@
 #include "animat/v1/genome.pb.h"
 #include "animat/v1/trace.pb.h"
 #include "common/base/status.h"
-#include "common/protocol/protocol.h"
+#include "common/protocol/genome_wire.h"
 #include "master/lineage/sqlite.h"
 
 namespace animat::lineage {

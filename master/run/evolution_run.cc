@@ -8,6 +8,7 @@
 
 #include "common/base/rng.h"
 #include "common/genome/genome_proto.h"
+#include "common/protocol/genome_wire.h"
 #include "common/protocol/protocol.h"
 
 namespace animat {

@@ -34,6 +34,7 @@
 #include "common/genome/genome_proto.h"
 #include "common/genome/random_genome.h"
 #include "common/io/proto_file.h"
+#include "common/protocol/genome_wire.h"
 #include "common/protocol/protocol.h"
 #include "master/dispatcher.h"
 #include "tests/dispatch/worker_process.h"

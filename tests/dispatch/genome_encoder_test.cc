@@ -13,7 +13,7 @@
 #include "common/genome/genome.h"
 #include "common/genome/genome_proto.h"
 #include "common/genome/random_genome.h"
-#include "common/protocol/protocol.h"
+#include "common/protocol/genome_wire.h"
 
 namespace animat {
 namespace {

@@ -13,6 +13,7 @@
 #include "common/base/rng.h"
 #include "common/genome/genome_proto.h"
 #include "common/genome/random_genome.h"
+#include "common/protocol/genome_wire.h"
 #include "common/protocol/protocol.h"
 
 namespace animat {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "common/protocol/protocol.h"
+#include "common/protocol/genome_wire.h"
 #include "master/lineage/store.h"
 #include "tests/lineage/lineage_test_util.h"
 

@@ -9,7 +9,7 @@
 #include <google/protobuf/text_format.h>
 #include <google/protobuf/util/message_differencer.h>
 
-#include "common/protocol/protocol.h"
+#include "common/protocol/genome_wire.h"
 #include "master/lineage/store.h"
 #include "tests/lineage/lineage_test_util.h"
 

@@ -17,6 +17,7 @@
 #include <zmq.hpp>
 
 #include "common/evaluation/model_config.h"
+#include "common/protocol/genome_wire.h"
 #include "common/protocol/protocol.h"
 #include "tests/dispatch/dispatch_harness.h"
 #include "tests/dispatch/fake_peers.h"
