@@ -68,6 +68,22 @@ LinePlot ActivityPlot(const analysis::Analysis& analysis, StepRange range) {
   add(front_back, "back", kBlue, kLongDash, a.back);
   add(left_right, "left", kRed, "", a.left);
   add(left_right, "right", kBlue, kLongDash, a.right);
+  // A side without cells has no series: say so (docs/analysis.md, "Sides").
+  auto missing = [](Panel& panel, const std::vector<double>& first,
+                    const char* first_name, const std::vector<double>& second,
+                    const char* second_name, const char* axis) {
+    if (first.empty() && second.empty()) {
+      panel.empty_note = std::string("no cell is ") + first_name + " or " +
+                         second_name + ": every cell lies on the " + axis +
+                         " axis";
+    } else if (first.empty() || second.empty()) {
+      panel.title += std::string(" (no cell is ") +
+                     (first.empty() ? first_name : second_name) + ")";
+    }
+  };
+  missing(front_back, a.front, "in front", a.back, "behind", "left–right");
+  missing(left_right, a.left, "on the left", a.right, "on the right",
+          "front–back");
   plot.panels = {front_back, left_right};
   return plot;
 }
@@ -93,9 +109,26 @@ Result<LinePlot> CellsPlot(const analysis::Recording& recording,
           std::to_string(recording.cells) + " cells)");
     }
     const analysis::CellSummary& summary = analysis.cells[cell];
-    std::string where =
-        std::string(summary.along_front >= 0 ? "front" : "back") + ", " +
-        (summary.along_left >= 0 ? "left" : "right");
+    // The cell's sides, as the activity figure counts them.
+    auto side = [&](const std::vector<analysis::Side>& sides,
+                    const char* axis) -> std::string {
+      if (static_cast<size_t>(cell) >= sides.size()) return "";
+      switch (sides[cell]) {
+        case analysis::Side::kFront:
+          return "front";
+        case analysis::Side::kBack:
+          return "back";
+        case analysis::Side::kLeft:
+          return "left";
+        case analysis::Side::kRight:
+          return "right";
+        case analysis::Side::kNone:
+          break;
+      }
+      return std::string("on the ") + axis + " axis";
+    };
+    std::string where = side(analysis.axes.front_back, "left–right") + ", " +
+                        side(analysis.axes.left_right, "front–back");
     if (summary.driver) where += ", driver";
     Panel panel{"cell " + std::to_string(cell) + " (" + where + ")",
                 "factor level",

@@ -150,17 +150,24 @@ std::string LinePlotSvg(const LinePlot& plot) {
     svg.Text({18, (top + bottom) / 2}, panel.y_label, 12, "middle", -90);
 
     double legend_y = top + 8;
+    int drawn = 0;
     for (const Series& s : panel.series) {
       std::vector<Vec2> points;
       for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
         if (Usable(s.x[i], s.y[i])) points.push_back({px(s.x[i]), py(s.y[i])});
       }
       if (points.empty()) continue;
+      ++drawn;
       svg.Polyline(points, s.colour, 1.5, s.dash, "series", s.label);
       const double lx = kLeft + plot_width + 12;
       svg.Line({lx, legend_y}, {lx + 26, legend_y}, s.colour, 1.5, "", s.dash);
       svg.Text({lx + 32, legend_y + 4}, s.label, 11);
       legend_y += 16;
+    }
+    if (drawn == 0) {
+      svg.Text({kLeft + plot_width / 2, (top + bottom) / 2},
+               panel.empty_note.empty() ? "no data" : panel.empty_note, 12,
+               "middle", 0, "empty");
     }
     svg.EndGroup();
   }

@@ -3,8 +3,9 @@
 // fitness figures are line charts.
 //
 // In the SVG each panel is a <g class="panel"> and each series drawn a
-// <polyline class="series" data-label="..."> (tests count them). Pure
-// function; thread-safe.
+// <polyline class="series" data-label="..."> (tests count them); a panel
+// with nothing to draw says so in a <text class="empty">. Pure function;
+// thread-safe.
 #ifndef ANIMAT_FIGURES_LINE_PLOT_H_
 #define ANIMAT_FIGURES_LINE_PLOT_H_
 
@@ -29,6 +30,9 @@ struct Panel {
   // The y range; by default the data's (from 0 when every value is >= 0).
   std::optional<double> y_min;
   std::optional<double> y_max;
+  // Written across the panel when no series has a point to draw ("no
+  // data" when empty).
+  std::string empty_note = "";
 };
 
 struct LinePlot {

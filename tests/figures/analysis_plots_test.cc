@@ -80,6 +80,22 @@ TEST(AnalysisPlotsTest, ActivityOfABodyWithoutSidesLeavesThemOut) {
   ASSERT_EQ(panels.size(), 2u);
   EXPECT_EQ(panels[0]->FindAll("polyline", "series").size(), 2u);
   EXPECT_EQ(panels[1]->FindAll("polyline", "series").size(), 0u);
+  // The empty panel says why it is empty; the other says nothing.
+  EXPECT_TRUE(panels[0]->FindAll("text", "empty").empty());
+  const auto note = panels[1]->FindAll("text", "empty");
+  ASSERT_EQ(note.size(), 1u);
+  EXPECT_EQ(note[0]->text,
+            "no cell is on the left or on the right: every cell lies on the "
+            "front–back axis");
+
+  // A cell of the chain is on that axis, not on a side.
+  Result<LinePlot> cells =
+      CellsPlot(s.recording, s.analysis, {1}, DefaultStepRange(s.analysis, 2));
+  ASSERT_TRUE(cells.ok()) << cells.status().ToString();
+  EXPECT_EQ(
+      cells->panels[0].title.rfind("cell 1 (back, on the front–back axis", 0),
+      0u)
+      << cells->panels[0].title;
 }
 
 TEST(AnalysisPlotsTest, CellsHaveOnePanelEachWithExpansionAndContraction) {
@@ -98,6 +114,8 @@ TEST(AnalysisPlotsTest, CellsHaveOnePanelEachWithExpansionAndContraction) {
     EXPECT_EQ(series[1]->Attribute("data-label"), "contraction c");
     EXPECT_EQ(Points(*series[1]), 161u);  // Steps 2000 to 2160.
   }
+  EXPECT_EQ(plot->panels[0].title.rfind("cell 1 (back, right", 0), 0u);
+  EXPECT_EQ(plot->panels[1].title.rfind("cell 6 (front, left", 0), 0u);
   EXPECT_FALSE(CellsPlot(s.recording, s.analysis, {8}, {2000, 2100}).ok());
   EXPECT_FALSE(CellsPlot(s.recording, s.analysis, {1}, {5000, 5100}).ok());
 }

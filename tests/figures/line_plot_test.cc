@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 
 #include "tests/figures/xml.h"
@@ -84,6 +85,23 @@ TEST(LinePlotTest, AChartWithoutDataStillHasAxes) {
   EXPECT_EQ(root.FindAll("g", "panel").size(), 1u);
   EXPECT_TRUE(root.FindAll("polyline", "series").empty());
   EXPECT_GE(root.FindAll("line").size(), 2u);
+}
+
+TEST(LinePlotTest, AnEmptyPanelSaysSo) {
+  LinePlot plot;
+  Panel explained{"sides", "y", {Line("nan", {NAN})}, {}, {}};
+  explained.empty_note = "no cell is on the left or on the right";
+  plot.panels = {Panel{"data", "y", {Line("a", {1, 2})}, {}, {}},
+                 Panel{"nothing", "y", {}, {}, {}}, explained};
+  const testing::XmlElement root = Parse(LinePlotSvg(plot));
+  const auto panels = root.FindAll("g", "panel");
+  ASSERT_EQ(panels.size(), 3u);
+  EXPECT_TRUE(panels[0]->FindAll("text", "empty").empty());
+  ASSERT_EQ(panels[1]->FindAll("text", "empty").size(), 1u);
+  EXPECT_EQ(panels[1]->FindAll("text", "empty")[0]->text, "no data");
+  ASSERT_EQ(panels[2]->FindAll("text", "empty").size(), 1u);
+  EXPECT_EQ(panels[2]->FindAll("text", "empty")[0]->text,
+            "no cell is on the left or on the right");
 }
 
 TEST(LinePlotTest, TicksAreRoundNumbersCoveringTheRange) {
