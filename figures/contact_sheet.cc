@@ -8,9 +8,13 @@
 namespace animat::figures {
 namespace {
 
-constexpr double kPicture = 180;      // Pixels, square, per individual.
-constexpr double kCaption = 36;       // Below each picture.
-constexpr double kTop = 30;           // Heading.
+constexpr double kPicture = 180;   // Pixels, square, per individual.
+constexpr double kMargin = 8;      // Left of the heading and the note.
+constexpr double kTitleSize = 14;  // Font sizes, pixels.
+constexpr double kHeadingSize = 12;
+constexpr double kCaptionSize = 11;
+constexpr double kNoteSize = 11;
+constexpr double kLeading = 1.3;      // Line height over font size.
 constexpr double kCellRadius = 0.45;  // Radii, as drawn.
 
 // The entry's points relative to the path's start (or the body's centre),
@@ -74,20 +78,48 @@ std::string ContactSheetSvg(const std::string& title,
   }
   const double scale = (kPicture / 2 - 8) / reach;  // Pixels per radius.
 
-  SvgWriter svg(shown_columns * kPicture,
-                kTop + rows * (kPicture + kCaption) + 24);
+  // Every text is wrapped to fit: the title and the note to the sheet, a
+  // picture's heading and caption to the picture.
+  const double width = shown_columns * kPicture;
+  const std::vector<std::string> title_lines =
+      WrapText(title, width - 2 * kMargin, kTitleSize);
+  const std::string note =
+      "Bodies at the start of motion, all at one scale (" +
+      Number(2 * reach, 1) +
+      " radii across); red: the path of the centre of mass, turned to run "
+      "right, up to the frame.";
+  const std::vector<std::string> note_lines =
+      WrapText(note, width - 2 * kMargin, kNoteSize);
+  std::vector<std::vector<std::string>> headings, captions;
+  size_t heading_lines = 1, caption_lines = 1;
+  for (const SheetEntry& e : entries) {
+    headings.push_back(WrapText(e.heading, kPicture - 8, kHeadingSize));
+    captions.push_back(WrapText(e.caption, kPicture - 8, kCaptionSize));
+    heading_lines = std::max(heading_lines, headings.back().size());
+    caption_lines = std::max(caption_lines, captions.back().size());
+  }
+  const double top = 8 + title_lines.size() * kLeading * kTitleSize;
+  const double below = 4 + heading_lines * kLeading * kHeadingSize +
+                       caption_lines * kLeading * kCaptionSize;
+  const double notes_top = top + rows * (kPicture + below);
+  SvgWriter svg(width,
+                notes_top + note_lines.size() * kLeading * kNoteSize + 8);
   svg.Title(title);
-  svg.Text({8, 20}, title, 14);
+  for (size_t l = 0; l < title_lines.size(); ++l) {
+    svg.Text({kMargin, 4 + (l + 1) * kLeading * kTitleSize}, title_lines[l],
+             kTitleSize);
+  }
   for (int n = 0; n < count; ++n) {
     const double left = (n % columns) * kPicture;
-    const double top = kTop + (n / columns) * (kPicture + kCaption);
-    const Vec2 centre(left + kPicture / 2, top + kPicture / 2);
+    const double picture_top = top + (n / columns) * (kPicture + below);
+    const Vec2 centre(left + kPicture / 2, picture_top + kPicture / 2);
     auto pixel = [&](Vec2 p) {
       return Vec2(centre.x + p.x * scale, centre.y - p.y * scale);
     };
     const SheetEntry& e = entries[n];
     svg.BeginGroup("individual");
-    svg.Rect({left + 2, top}, kPicture - 4, kPicture, "none", "#cccccc");
+    svg.Rect({left + 2, picture_top}, kPicture - 4, kPicture, "none",
+             "#cccccc");
     for (const auto& [a, b] : e.springs) {
       if (a < 0 || b < 0 || a >= static_cast<int>(e.cells.size()) ||
           b >= static_cast<int>(e.cells.size())) {
@@ -104,16 +136,22 @@ std::string ContactSheetSvg(const std::string& title,
       for (Vec2 p : placed[n].path) points.push_back(pixel(p));
       svg.Polyline(points, "#d62728", 1.5, "", "path", "centre of mass");
     }
-    svg.Text({centre.x, top + kPicture + 14}, e.heading, 12, "middle");
-    svg.Text({centre.x, top + kPicture + 29}, e.caption, 11, "middle");
+    double y = picture_top + kPicture;
+    for (const std::string& line : headings[n]) {
+      y += kLeading * kHeadingSize;
+      svg.Text({centre.x, y}, line, kHeadingSize, "middle");
+    }
+    y = picture_top + kPicture + heading_lines * kLeading * kHeadingSize;
+    for (const std::string& line : captions[n]) {
+      y += kLeading * kCaptionSize;
+      svg.Text({centre.x, y}, line, kCaptionSize, "middle");
+    }
     svg.EndGroup();
   }
-  svg.Text({8, kTop + rows * (kPicture + kCaption) + 14},
-           "Bodies at the start of motion, all at one scale (" +
-               Number(2 * reach, 1) +
-               " radii across); red: the path of the centre of mass, turned "
-               "to run right, up to the frame.",
-           11);
+  for (size_t l = 0; l < note_lines.size(); ++l) {
+    svg.Text({kMargin, notes_top + (l + 1) * kLeading * kNoteSize},
+             note_lines[l], kNoteSize, "start", 0, "note");
+  }
   return svg.Finish();
 }
 

@@ -5,7 +5,8 @@
 // and the path of its centre of mass over the motion, turned so that the
 // net displacement points right; the scale fits the largest body, and a
 // path is cut where it leaves its picture. An individual without a body
-// (a failed evaluation) shows its caption only. In the SVG each picture is a
+// (a failed evaluation) shows its caption only. Every text is broken into
+// lines that fit its picture or the sheet. In the SVG each picture is a
 // <g class="individual"> with one <circle class="cell"> per cell and at
 // most one <polyline class="path">. Pure function; thread-safe.
 #ifndef ANIMAT_FIGURES_CONTACT_SHEET_H_

@@ -44,6 +44,39 @@ std::string Escape(std::string_view text) {
   return out;
 }
 
+double TextWidth(std::string_view text, double size) {
+  int characters = 0;
+  for (const char c : text) {
+    // Every byte but UTF-8 continuation bytes starts a character.
+    if ((static_cast<unsigned char>(c) & 0xC0) != 0x80) ++characters;
+  }
+  return 0.6 * size * characters;
+}
+
+std::vector<std::string> WrapText(std::string_view text, double width,
+                                  double size) {
+  std::vector<std::string> lines;
+  std::string line;
+  size_t start = 0;
+  while (start < text.size()) {
+    size_t end = text.find(' ', start);
+    if (end == std::string_view::npos) end = text.size();
+    const std::string_view word = text.substr(start, end - start);
+    start = end + 1;
+    if (word.empty()) continue;
+    const std::string longer =
+        line.empty() ? std::string(word) : line + " " + std::string(word);
+    if (!line.empty() && TextWidth(longer, size) > width) {
+      lines.push_back(line);
+      line = std::string(word);
+    } else {
+      line = longer;
+    }
+  }
+  if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+
 namespace {
 
 // Appends ` name="value"` (escaped) unless `value` is empty. Pieces are

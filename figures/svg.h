@@ -22,6 +22,17 @@ std::string Number(double value, int decimals = 2);
 // `text` with &, <, >, " and ' replaced by entities.
 std::string Escape(std::string_view text);
 
+// About how wide `text` is, in pixels, at font `size` in the figures'
+// sans-serif: 0.6 em per character (a UTF-8 code point), more than DejaVu
+// Sans or Liberation Sans need for ordinary text.
+double TextWidth(std::string_view text, double size);
+
+// `text` broken at spaces into lines at most `width` pixels wide by
+// TextWidth; a word wider than that has a line of its own. No lines for
+// empty text.
+std::vector<std::string> WrapText(std::string_view text, double width,
+                                  double size);
+
 class SvgWriter {
  public:
   // Starts a document of `width` × `height` pixels on a white background.

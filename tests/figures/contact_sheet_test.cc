@@ -2,9 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <sstream>
 
+#include "figures/svg.h"
 #include "tests/figures/xml.h"
 
 namespace animat::figures {
@@ -86,6 +88,63 @@ TEST(ContactSheetTest, TheScaleFitsTheBodiesAndCutsLongPaths) {
   const auto cells = root.FindAll("circle", "cell");
   ASSERT_EQ(cells.size(), 3u);
   EXPECT_GT(std::atof(cells[0]->Attribute("r").c_str()), 4.5);
+}
+
+// Every text fits the sheet, and a picture's heading and caption fit the
+// picture: long ones are broken into lines, none of their words lost.
+TEST(ContactSheetTest, EveryTextFitsItsPlaceWithNothingCut) {
+  SheetEntry failed{"generation 12 of a long run",
+                    "no individual with a fitness in this generation",
+                    {},
+                    {},
+                    {}};
+  for (const int columns : {1, 2, 4}) {
+    SCOPED_TRACE(std::to_string(columns) + " columns");
+    const std::vector<SheetEntry> entries = {Triangle("generation 0", {1, 0}),
+                                             failed};
+    const std::string title =
+        "Best individual every 12 generations (seed 1234567)";
+    const testing::XmlElement root =
+        Parse(ContactSheetSvg(title, entries, columns));
+    const double width = std::atof(root.Attribute("width").c_str());
+    const double height = std::atof(root.Attribute("height").c_str());
+    std::string words;
+    for (const testing::XmlElement* text : root.FindAll("text")) {
+      const double size = std::atof(text->Attribute("font-size").c_str());
+      const double x = std::atof(text->Attribute("x").c_str());
+      const double y = std::atof(text->Attribute("y").c_str());
+      const double w = TextWidth(text->text, size);
+      const bool middle = text->Attribute("text-anchor") == "middle";
+      const double left = middle ? x - w / 2 : x;
+      EXPECT_GE(left, 0) << text->text;
+      EXPECT_LE(left + w, width) << text->text;
+      EXPECT_LE(y, height) << text->text;
+      if (middle) {  // A picture's: within its column.
+        const double column = std::floor(x / 180);
+        EXPECT_GE(left, column * 180) << text->text;
+        EXPECT_LE(left + w, (column + 1) * 180) << text->text;
+      }
+      words += text->text + " ";
+    }
+    for (const std::string& whole :
+         {title, failed.heading, failed.caption,
+          std::string("turned to run right, up to the frame.")}) {
+      // Lines are joined by spaces: the whole text is there.
+      EXPECT_NE(words.find(whole), std::string::npos) << whole << "\n" << words;
+    }
+  }
+}
+
+TEST(SvgTest, WrapsTextAtSpacesToAWidth) {
+  EXPECT_EQ(WrapText("one two three", 1000, 10),
+            (std::vector<std::string>{"one two three"}));
+  // 6 pixels a character at size 10: "one two" is 42 wide.
+  EXPECT_EQ(WrapText("one two three", 45, 10),
+            (std::vector<std::string>{"one two", "three"}));
+  EXPECT_EQ(WrapText("extraordinarily long", 30, 10),
+            (std::vector<std::string>{"extraordinarily", "long"}));
+  EXPECT_TRUE(WrapText("", 30, 10).empty());
+  EXPECT_EQ(TextWidth("é–a", 10), 18);  // Characters, not bytes.
 }
 
 }  // namespace
