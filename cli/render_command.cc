@@ -6,6 +6,7 @@
 // run's configuration unless --config says otherwise), is simulated here;
 // a trace written by `simulate --trace` or `scene --trace` is shown as is.
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -33,6 +34,12 @@ struct Options {
   double neutral_rate = viz::kDefaultNeutralRate;
   std::string output;
 };
+
+// The name of the file at `path`, without its folders: the page's title.
+std::string FileName(const std::string& path) {
+  const std::string name = std::filesystem::path(path).filename().string();
+  return name.empty() ? path : name;
+}
 
 // Simulates `genome` under `config`, recording every `every`-th step.
 v1::Trace Simulate(const Genome& genome, const ModelConfig& config, int every) {
@@ -88,7 +95,8 @@ Result<v1::Trace> FromStore(const Options& o, std::string* title) {
                  "build gives %.17g\n",
                  name.c_str(), *row->fitness, trace.result().fitness());
   }
-  *title = name + " (generation " + std::to_string(row->generation) + ")";
+  *title = name + " (generation " + std::to_string(row->generation) + ") of " +
+           FileName(o.db);
   return trace;
 }
 
@@ -98,7 +106,7 @@ int Run(const Options& o) {
   if (!o.trace.empty()) {
     Status status = ReadProtoFile(o.trace, &trace);
     if (!status.ok()) return Fail(status.message());
-    title = o.trace;
+    title = FileName(o.trace);
   } else if (!o.db.empty()) {
     Result<v1::Trace> read = FromStore(o, &title);
     if (!read.ok()) return Fail(read.status().message());
@@ -109,7 +117,7 @@ int Run(const Options& o) {
     Result<ModelConfig> config = LoadConfig(o.config);
     if (!config.ok()) return Fail(config.status().message());
     trace = Simulate(*genome, *config, o.every);
-    title = o.genome;
+    title = FileName(o.genome);
   }
 
   viz::PageOptions page_options;
@@ -117,7 +125,9 @@ int Run(const Options& o) {
   page_options.neutral_rate = o.neutral_rate;
   Result<std::string> page = viz::RenderPage(trace, page_options);
   if (!page.ok()) {
-    const std::string source = o.trace.empty() ? title : o.trace;
+    const std::string source = !o.trace.empty()    ? o.trace
+                               : !o.genome.empty() ? o.genome
+                                                   : title;
     return Fail(page.status().WithPrefix(source).message());
   }
   Status status = WriteFile(o.output, *page);

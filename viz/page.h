@@ -1,7 +1,8 @@
 // A trace as one self-contained HTML page that replays it: development
 // (cells as discs), then equilibration and motion (springs, skin, cells
 // coloured by actuation as in the paper's Fig. 4, the centre of mass's
-// trail), with play, pause, speed, a scrub bar and the step number.
+// trail, a scale bar), with play, pause, speed, a scrub bar, the step
+// number and the model time.
 //
 // The page loads nothing: its script, style and data are inline. Its
 // controls and the hooks for scripts (window.animat, #step's data

@@ -185,6 +185,14 @@ void AppendLengths(const v1::Trace& trace, std::string* out) {
               ",\"motion\":" + std::to_string(motion) + "}");
 }
 
+// Model time per equilibration and motion step: the configuration's
+// physics.dt, else its default (docs/model.md §7.8).
+void AppendDt(const v1::Trace& trace, std::string* out) {
+  const v1::PhysicsConfig& physics = trace.config().physics();
+  out->append("\"dt\":");
+  AppendExact(physics.has_dt() ? physics.dt() : 0.05, out);
+}
+
 void AppendResult(const v1::EvaluationResult& result, std::string* out) {
   out->append("\"result\":{\"status\":");
   AppendString(StatusName(result), out);
@@ -223,6 +231,8 @@ Result<std::string> PageDataJson(const v1::Trace& trace,
   AppendResult(trace.result(), &out);
   out.append(",");
   AppendLengths(trace, &out);
+  out.append(",");
+  AppendDt(trace, &out);
   out.append(",\"neutral_rate\":");
   AppendExact(options.neutral_rate, &out);
   out.append(",");

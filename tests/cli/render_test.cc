@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include "animat/v1/trace.pb.h"
@@ -113,7 +114,9 @@ TEST(RenderTest, AGenomesPageHoldsEveryFrameOfItsTrace) {
   EXPECT_EQ(
       Field(Field(data, "lengths").struct_value(), "motion").number_value(),
       200);
-  EXPECT_EQ(Field(data, "title").string_value(), Genome());
+  // The genome's file name, not its path.
+  EXPECT_EQ(Field(data, "title").string_value(), "seed-1198.json");
+  EXPECT_EQ(Field(data, "dt").number_value(), 0.05);
 }
 
 TEST(RenderTest, AStoredIndividualIsSimulatedUnderItsRunsConfiguration) {
@@ -154,7 +157,8 @@ TEST(RenderTest, AStoredIndividualIsSimulatedUnderItsRunsConfiguration) {
   ASSERT_TRUE(expected.fitness.has_value());
   const Struct data = PageData(Temp("db.html"));
   EXPECT_EQ(Field(data, "title").string_value(),
-            "individual 7 of run 1 (generation 3)");
+            "individual 7 of run 1 (generation 3) of " +
+                std::filesystem::path(db.path()).filename().string());
   EXPECT_EQ(
       Field(Field(data, "result").struct_value(), "fitness").number_value(),
       *expected.fitness);

@@ -271,6 +271,77 @@ TEST_F(BrowserTest, EachFrameShowsItsPictureStepAndCellsFromTheTrace) {
   }
 }
 
+// The text between the start tag beginning with `prefix` and the next '<'.
+std::string TextAfter(const std::string& dom, const std::string& prefix) {
+  const std::string tag = StartTag(dom, prefix);
+  if (tag.empty()) return "";
+  const size_t from = dom.find(tag) + tag.size();
+  return dom.substr(from, dom.find('<', from) - from);
+}
+
+// The numbers of an attribute such as points="x,y x,y" or viewBox.
+std::vector<double> Numbers(const std::string& text) {
+  std::vector<double> numbers;
+  std::string current;
+  for (const char c : text + " ") {
+    if (c == ',' || c == ' ') {
+      if (!current.empty()) numbers.push_back(std::atof(current.c_str()));
+      current.clear();
+    } else {
+      current += c;
+    }
+  }
+  return numbers;
+}
+
+// A scale bar one grid square long, the model time of equilibration and
+// motion frames, and the trace's file name without its folders.
+TEST_F(BrowserTest, TheViewHasAScaleBarTheModelTimeAndTheFileName) {
+  const std::string last = std::to_string(Frames() - 1);
+  const Outcome run = Shell(
+      Chromium("--window-size=1000,700 --dump-dom", "frame=" + last, 500));
+  ASSERT_EQ(run.exit_code, 0);
+  const std::string& dom = run.output;
+
+  // The bar: as long as a grid square in the picture's own coordinates,
+  // labelled with it, and as many screen pixels as the view's scale
+  // gives (at most 1000 pixels across the view's width; data-pixels has
+  // 4 significant digits).
+  const std::string unit =
+      Attribute(StartTag(dom, "<g id=\"grid\""), "data-unit");
+  ASSERT_FALSE(unit.empty());
+  const std::string scale = StartTag(dom, "<g id=\"scale\"");
+  EXPECT_EQ(Attribute(scale, "data-radii"), unit);
+  const std::vector<double> bar =
+      Numbers(Attribute(StartTag(dom, "<polyline", dom.find(scale)), "points"));
+  ASSERT_EQ(bar.size(), 8u);
+  EXPECT_NEAR(bar[4] - bar[2], std::atof(unit.c_str()), 1e-9);
+  EXPECT_EQ(TextAfter(dom.substr(dom.find(scale)), "<text"),
+            unit + (unit == "1" ? " radius" : " radii"));
+  const std::vector<double> view =
+      Numbers(Attribute(StartTag(dom, "<svg id=\"view\""), "viewBox"));
+  ASSERT_EQ(view.size(), 4u);
+  const double pixels = std::atof(Attribute(scale, "data-pixels").c_str());
+  EXPECT_GT(pixels, 10);
+  EXPECT_LE(pixels, std::atof(unit.c_str()) * 1000 / view[2] * 1.001);
+
+  // Model time: the step times physics.dt (0.05).
+  const v1::MotionFrame& frame = trace_.frames(trace_.frames_size() - 1);
+  ASSERT_EQ(frame.step(), 200);
+  EXPECT_EQ(Attribute(StartTag(dom, "<span id=\"time\""), "data-time"), "10");
+  EXPECT_EQ(TextAfter(dom, "<span id=\"time\""), "model time 10");
+
+  // The file's name, not its path.
+  EXPECT_EQ(TextAfter(dom, "<h1 id=\"title\""), "trace.binpb");
+
+  // Development has no model time of the physics.
+  const Outcome early =
+      Shell(Chromium("--window-size=1000,700 --dump-dom", "frame=5", 500));
+  EXPECT_EQ(Read(early.output).phase, "development");
+  EXPECT_EQ(Attribute(StartTag(early.output, "<span id=\"time\""), "data-time"),
+            "");
+}
+
 TEST_F(BrowserTest, PlayingAdvancesFramesAndTheCounterFollows) {
   const Shown shown = Open("frame=0&play&speed=0.5", 1000);
   const int frame = std::atoi(shown.frame.c_str());

@@ -119,6 +119,15 @@ TEST(PageDataTest, ResultAndPhaseLengthsComeFromTheTrace) {
   EXPECT_EQ(Field(lengths, "motion").number_value(), 20);
 }
 
+// The model time per equilibration and motion step: the configuration's
+// physics.dt, else its default.
+TEST(PageDataTest, TheTimeStepIsTheConfigurationsOrTheDefault) {
+  v1::Trace trace = testing::TriangleTrace();
+  EXPECT_EQ(Field(Data(trace), "dt").number_value(), 0.05);
+  trace.mutable_config()->mutable_physics()->set_dt(0.01);
+  EXPECT_EQ(Field(Data(trace), "dt").number_value(), 0.01);
+}
+
 TEST(PageDataTest, WithoutAConfigurationTheLastStepsAreTheLengths) {
   v1::Trace trace = testing::TriangleTrace();
   trace.clear_config();
