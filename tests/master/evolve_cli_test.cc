@@ -568,6 +568,11 @@ TEST_F(EvolveCliTest, BadArgumentsGetAClearErrorAndANonZeroExit) {
        Path("new.db") +
            ": no such lineage store; --config is needed to start a run"},
       {{"evolve", "--config", config_}, "--db is required"},
+      // The store's path, and what is wrong with it, in words.
+      {{"lineage", "best", "--db", Path("")}, Path("") + " is a directory"},
+      {{"evolve", "--config", config_, "--db", Path("nowhere/x.db")},
+       "cannot create " + Path("nowhere/x.db") + ": the folder " +
+           Path("nowhere") + " does not exist"},
   };
   for (const Case& c : cases) {
     std::string joined;
@@ -581,6 +586,7 @@ TEST_F(EvolveCliTest, BadArgumentsGetAClearErrorAndANonZeroExit) {
   EXPECT_FALSE(std::filesystem::exists(Path("g.json")));
   EXPECT_FALSE(std::filesystem::exists(Path("new.db")));
   EXPECT_FALSE(std::filesystem::exists(missing));
+  EXPECT_FALSE(std::filesystem::exists(Path("nowhere")));
 }
 
 }  // namespace
