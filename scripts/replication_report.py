@@ -114,13 +114,25 @@ def analyze(animat, db, individual):
     strategy = a.get("strategy", {})
     scores = {x["label"].lower(): x.get("score", 0.0)
               for x in strategy.get("score", [])}
-    nearest = max(sorted(scores), key=lambda k: scores[k]) if scores else ""
-    if nearest and not scores[nearest] > 0.0:
-        nearest = "none"  # Every label scores 0.
+    # A label's score is its weakest criterion, so one unmet criterion gives
+    # 0. The nearest label is the one with the most criteria met (membership
+    # at least 0.5), then the highest mean membership.
+    criteria = {}
+    for x in strategy.get("score", []):
+        terms = x.get("term", [])
+        met = [t["feature"] for t in terms if t.get("membership", 0.0) >= 0.5]
+        mean = (sum(t.get("membership", 0.0) for t in terms) / len(terms)
+                if terms else 0.0)
+        criteria[x["label"].lower()] = {"met": met, "of": len(terms),
+                                        "mean_membership": mean}
+    nearest = max(sorted(criteria), key=lambda k: (
+        len(criteria[k]["met"]) / criteria[k]["of"],
+        criteria[k]["mean_membership"])) if criteria else "none"
     return {
         "label": strategy.get("label", "OTHER").lower(),
         "nearest": nearest,
         "nearest_score": scores.get(nearest, 0.0),
+        "criteria": criteria,
         "margin": strategy.get("margin", 0.0),
         "scores": scores,
         "features": strategy.get("features", {}),
@@ -239,11 +251,14 @@ def main():
     for label in ("turtle", "shark", "worm", "jellyfish"):
         if label in shown:
             continue
-        scored = [r for r in runs
-                  if r["best_analysis"]["scores"].get(label, 0.0) > 0.0]
+        def closeness(r):
+            c = r["best_analysis"]["criteria"].get(label)
+            return (len(c["met"]) / c["of"], c["mean_membership"]) if c else (0, 0)
+        scored = [r for r in runs if closeness(r)[0] > 0.0]
         if scored:
             top = max(scored, key=lambda r: (
-                r["best_analysis"]["scores"][label], r["best"]["fitness"]))
+                r["best_analysis"]["scores"].get(label, 0.0), closeness(r),
+                r["best"]["fitness"]))
             shown["nearest-" + label] = top
     problems = []
     for label, r in shown.items():
@@ -293,6 +308,34 @@ def main():
             f"{b['skin_edges']} | {b['spread_major']:.2f}, "
             f"{b['spread_minor']:.2f} | {a['label']} ({a['margin']:.2f}); "
             f"nearest {a['nearest']} {a['nearest_score']:.2f} |")
+    lines.append("")
+    labels = ("turtle", "shark", "worm", "jellyfish")
+    lines.append("| run | " + " | ".join(
+        f"{k}: criteria met" for k in labels) + " |")
+    lines.append("|---|" + "---|" * len(labels))
+    for r in runs:
+        c = r["best_analysis"]["criteria"]
+        cells = []
+        for k in labels:
+            x = c.get(k)
+            cells.append("—" if not x else
+                         f"{len(x['met'])}/{x['of']}" +
+                         (f" ({', '.join(m.replace('_', ' ') for m in x['met'])})"
+                          if x["met"] else ""))
+        lines.append(f"| {r['name']} | " + " | ".join(cells) + " |")
+    lines.append("")
+    lines.append("| run | ok individuals with no chamber | best / best at "
+                 "generation 0 | Spearman (amplitude, frequency), fittest "
+                 "members of the last generation |")
+    lines.append("|---|---:|---:|---:|")
+    for r in runs:
+        s0, b = r["stats"][0], r["best"]
+        rho = r["spearman_amplitude_frequency"]
+        lines.append(
+            f"| {r['name']} | {r['ok_chains']} | "
+            f"{b['fitness'] / s0['best_fitness']:.1f} | "
+            f"{'—' if rho is None else 'undefined, one period' if math.isnan(rho) else f'{rho:+.2f}'} "
+            f"({len(r['top_members'])}) |")
     lines.append("")
     keys = ["synchrony", "stroke_asymmetry", "holding", "coasting",
             "lr_symmetry", "fb_symmetry", "fb_lag", "lr_lag",
