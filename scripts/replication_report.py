@@ -114,8 +114,8 @@ def analyze(animat, db, individual):
     strategy = a.get("strategy", {})
     scores = {x["label"].lower(): x.get("score", 0.0)
               for x in strategy.get("score", [])}
-    # A label's score is its weakest criterion, so one unmet criterion gives
-    # 0. The nearest label is the one with the most criteria met (membership
+    # A label's score is the geometric mean of its criteria's memberships,
+    # so one criterion clearly missed gives 0. The nearest label is the one with the most criteria met (membership
     # at least 0.5), then the highest mean membership.
     criteria = {}
     for x in strategy.get("score", []):
