@@ -23,6 +23,7 @@ import sqlite3
 import statistics
 import subprocess
 import sys
+import tempfile
 
 RUN_NAME = re.compile(r"^dn([0-9.]+)-seed([0-9]+)\.db$")
 
@@ -145,6 +146,43 @@ def analyze(animat, db, individual):
     }
 
 
+def glide(animat, genome, config, start=3000):
+    """How the centre of mass moves within the strokes, from a trace of every
+    motion step from `start`: v is its velocity along the window's net
+    displacement, a each step's mean |change of e - c| over the cells.
+    Returns the share of steps that move backward (v < 0), the share of
+    quiet steps (a below a quarter of its maximum) and the mean v over the
+    quiet steps relative to the mean v over all: near 1 or above, the body
+    keeps moving forward while its cells are still (it coasts); near 0 or
+    below, it stops or backs between strokes."""
+    with tempfile.TemporaryDirectory() as tmp:
+        trace = os.path.join(tmp, "trace.json")
+        run([animat, "simulate", "--genome", genome, "--config", config,
+             "--trace", trace, "--every", "1"])
+        with open(trace) as f:
+            frames = [x for x in json.load(f)["frames"]
+                      if x["phase"] == "MOTION" and x["step"] >= start]
+    n = len(frames[0]["x"])
+    cx = [sum(x["x"]) / n for x in frames]
+    cy = [sum(x["y"]) / n for x in frames]
+    dx, dy = cx[-1] - cx[0], cy[-1] - cy[0]
+    length = math.hypot(dx, dy)
+    if not length > 0:
+        return None
+    ux, uy = dx / length, dy / length
+    v = [(sum(x["vx"]) * ux + sum(x["vy"]) * uy) / n for x in frames[1:]]
+    act = [sum(abs((b["expand"][i] - b["contract"][i]) -
+                   (a["expand"][i] - a["contract"][i])) for i in range(n)) / n
+           for a, b in zip(frames, frames[1:])]
+    quiet = [vv for vv, aa in zip(v, act) if aa < 0.25 * max(act)]
+    mean = statistics.mean(v)
+    return {
+        "backward_share": sum(1 for x in v if x < 0) / len(v),
+        "quiet_share": len(quiet) / len(v),
+        "quiet_speed": statistics.mean(quiet) / mean if quiet else None,
+    }
+
+
 def spearman(xs, ys):
     """Spearman's rank correlation (average ranks for ties)."""
     def ranks(v):
@@ -215,6 +253,7 @@ def main():
                                       float.hex(r["resimulated_fitness"]) ==
                                       float.hex(best["fitness"]))
         r["best_analysis"] = analyze(animat, r["db"], best["id"])
+        r["best_glide"] = glide(animat, stem + ".json", stem + ".config.txtpb")
         # Amplitude against frequency over the fittest members.
         members = [m for m in r["members"] if m["status"] == "ok"][:args.top]
         points = []
@@ -326,8 +365,9 @@ def main():
     lines.append("")
     lines.append("| run | ok individuals with no chamber | best / best at "
                  "generation 0 | Spearman (amplitude, frequency), fittest "
-                 "members of the last generation |")
-    lines.append("|---|---:|---:|---:|")
+                 "members of the last generation | steps moving backward "
+                 "| quiet steps | speed while quiet / mean |")
+    lines.append("|---|---:|---:|---:|---:|---:|---:|")
     for r in runs:
         s0, b = r["stats"][0], r["best"]
         rho = r["spearman_amplitude_frequency"]
@@ -335,7 +375,12 @@ def main():
             f"| {r['name']} | {r['ok_chains']} | "
             f"{b['fitness'] / s0['best_fitness']:.1f} | "
             f"{'—' if rho is None else 'undefined, one period' if math.isnan(rho) else f'{rho:+.2f}'} "
-            f"({len(r['top_members'])}) |")
+            f"({len(r['top_members'])}) | " +
+            ("— | — | — |" if not r["best_glide"] else
+             f"{r['best_glide']['backward_share']:.0%} | "
+             f"{r['best_glide']['quiet_share']:.0%} | " +
+             ("—" if r["best_glide"]["quiet_speed"] is None else
+              f"{r['best_glide']['quiet_speed']:+.2f}") + " |"))
     lines.append("")
     keys = ["synchrony", "stroke_asymmetry", "holding", "coasting",
             "lr_symmetry", "fb_symmetry", "fb_lag", "lr_lag",
