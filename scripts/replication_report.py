@@ -402,6 +402,17 @@ def main():
             if period and amplitude is not None else f"| {r['name']} | — | — | ")
         lines[-1] += " | ".join(values) + " |"
     lines.append("")
+    statuses = sorted({k for r in runs for k in r["offspring_statuses"]},
+                      key=lambda k: (k != "ok", k))
+    lines.append("| run | offspring (generations ≥ 1) | " + " | ".join(
+        k.replace("_", " ") for k in statuses) + " |")
+    lines.append("|---|---:|" + "---:|" * len(statuses))
+    for r in runs:
+        total = sum(r["offspring_statuses"].values())
+        lines.append(f"| {r['name']} | {total:,} | " + " | ".join(
+            f"{r['offspring_statuses'].get(k, 0) / total:.1%}"
+            for k in statuses) + " |")
+    lines.append("")
     lines.append("| run | cells of the ok members of the last generation |")
     lines.append("|---|---|")
     for r in runs:
