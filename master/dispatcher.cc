@@ -105,21 +105,21 @@ void Dispatcher::Submit(uint64_t individual,
 
 std::vector<Completion> Dispatcher::Poll(int timeout_ms) {
   std::vector<Completion> done;
-  const Clock::time_point end =
-      Clock::now() + std::chrono::milliseconds(timeout_ms);
+  const TimePoint end =
+      options_.clock->Now() + std::chrono::milliseconds(timeout_ms);
   for (;;) {
     Dispatch();
     // Round the time left up, so the last fraction of a millisecond is
     // waited for, not spun through.
-    const auto left =
-        std::chrono::ceil<std::chrono::milliseconds>(end - Clock::now());
+    const auto left = std::chrono::ceil<std::chrono::milliseconds>(
+        end - options_.clock->Now());
     const long wait = std::clamp<long>(left.count(), 0,
                                        std::max(1, options_.heartbeat_ms / 4));
     zmq::pollitem_t item = {static_cast<void*>(*socket_), 0, ZMQ_POLLIN, 0};
     protocol::Poll(&item, 1, std::chrono::milliseconds(wait));
     if (item.revents & ZMQ_POLLIN) Receive(&done);
     Housekeep(&done);
-    if (!done.empty() || Clock::now() >= end) break;
+    if (!done.empty() || options_.clock->Now() >= end) break;
   }
   Dispatch();
   return done;
@@ -176,7 +176,7 @@ void Dispatcher::Handle(const std::string& identity,
     return;
   }
   WorkerState& worker = it->second;
-  worker.last_heard = Clock::now();
+  worker.last_heard = options_.clock->Now();
   switch (envelope.body_case()) {
     case v1::Envelope::kCredit: {
       const int cap = CreditCap(worker.threads);
@@ -273,7 +273,7 @@ void Dispatcher::Greet(const std::string& identity, const v1::Hello& hello,
   worker.threads = static_cast<int>(
       std::clamp<uint32_t>(hello.threads(), 1, protocol::kMaxThreads));
   worker.null_evaluation = hello.null_evaluation();
-  worker.last_heard = Clock::now();
+  worker.last_heard = options_.clock->Now();
   strangers_.erase(identity);
   v1::Envelope envelope;
   v1::Welcome* welcome = envelope.mutable_welcome();
@@ -370,7 +370,7 @@ void Dispatcher::Acknowledge(const std::vector<uint64_t>& individuals) {
 }
 
 void Dispatcher::Lease(const std::string& identity, WorkerState& worker,
-                       uint64_t individual, Clock::time_point deadline,
+                       uint64_t individual, TimePoint deadline,
                        WorkEncoder* work, std::vector<uint64_t>* items) {
   Individual& entry = pending_.at(individual);
   work->Add(entry.item);
@@ -390,8 +390,8 @@ void Dispatcher::Lease(const std::string& identity, WorkerState& worker,
 void Dispatcher::Dispatch() {
   for (auto& [identity, worker] : workers_) {
     if (worker.credit <= 0 || worker.suspect.has_value()) continue;
-    const Clock::time_point deadline =
-        Clock::now() + std::chrono::milliseconds(options_.lease_ms);
+    const TimePoint deadline =
+        options_.clock->Now() + std::chrono::milliseconds(options_.lease_ms);
     if (!suspects_.empty()) {
       // A suspect (its last worker died or its lease expired) goes alone to
       // a worker holding nothing else, so it cannot take others down.
@@ -454,7 +454,7 @@ bool Dispatcher::SendWork(const std::string& identity, WorkerState& worker,
 }
 
 void Dispatcher::Housekeep(std::vector<Completion>* done) {
-  const Clock::time_point now = Clock::now();
+  const TimePoint now = options_.clock->Now();
   const auto silent_limit =
       std::chrono::milliseconds(protocol::kLiveness * options_.heartbeat_ms);
   std::vector<std::string> dead;
@@ -580,7 +580,7 @@ bool Dispatcher::SendEncoded(const std::string& identity, const char* what,
   } catch (const zmq::error_t& e) {
     problem = e.what();
   }
-  if (it != workers_.end()) it->second.last_sent = Clock::now();
+  if (it != workers_.end()) it->second.last_sent = options_.clock->Now();
   if (problem.empty()) {
     if (it != workers_.end()) it->second.send_failed = false;
     return true;

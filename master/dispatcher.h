@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "animat/v1/protocol.pb.h"
+#include "common/base/clock.h"
 #include "common/base/log.h"
 #include "common/base/status.h"
 #include "common/evaluation/model_config.h"
@@ -64,6 +65,11 @@ struct DispatcherOptions {
   // result again to the next master if this one dies before that.
   bool acknowledge_on_receipt = true;
   LogSink log = Prefixed("dispatcher", StderrSink);
+  // The time heartbeats, liveness and leases are kept by (not owned; it
+  // must outlive the dispatcher). Tests give a ManualClock: then Poll(0)
+  // makes one pass, and a longer Poll returns only with completions or
+  // once another thread has moved the clock past its timeout.
+  const Clock* clock = &RealClock();
 };
 
 // An individual whose evaluation ended.
@@ -102,8 +108,8 @@ class Dispatcher {
   // the caller may already have it.
   void Submit(uint64_t individual, const protocol::SerializedGenome& genome);
 
-  // Serves workers for up to `timeout_ms` and returns the completions that
-  // came in, as soon as there are some.
+  // Serves workers for up to `timeout_ms` (of the clock's time) and returns
+  // the completions that came in, as soon as there are some.
   std::vector<Completion> Poll(int timeout_ms);
 
   // Tells the workers that delivered these completions' results that they
@@ -121,9 +127,11 @@ class Dispatcher {
   uint64_t config_hash() const { return config_hash_; }
   // The endpoint actually bound ("tcp://127.0.0.1:41234" for a ":*" port).
   const std::string& endpoint() const { return endpoint_; }
+  // DispatcherOptions::clock.
+  const Clock& clock() const { return *options_.clock; }
 
  private:
-  using Clock = std::chrono::steady_clock;
+  using TimePoint = Clock::TimePoint;
 
   struct WorkerState {
     std::string name;       // host:pid
@@ -131,8 +139,8 @@ class Dispatcher {
     int threads = 1;
     int credit = 0;
     bool null_evaluation = false;
-    Clock::time_point last_heard;
-    Clock::time_point last_sent;
+    TimePoint last_heard;
+    TimePoint last_sent;
     bool send_failed = false;  // The last send failed (logged once).
     std::set<uint64_t> leased;
     std::optional<uint64_t> suspect;  // The suspect it holds alone.
@@ -144,7 +152,7 @@ class Dispatcher {
     int attempts = 0;
     bool leased = false;
     std::string worker;  // Identity, when leased.
-    Clock::time_point deadline;
+    TimePoint deadline;
   };
 
   Dispatcher(zmq::context_t* context, DispatcherOptions options,
@@ -159,7 +167,7 @@ class Dispatcher {
                const v1::Results& results, std::vector<Completion>* done);
   void Dispatch();
   void Lease(const std::string& identity, WorkerState& worker,
-             uint64_t individual, Clock::time_point deadline, WorkEncoder* work,
+             uint64_t individual, TimePoint deadline, WorkEncoder* work,
              std::vector<uint64_t>* items);
   // Ends an individual's lease (it stays pending).
   void Unlease(uint64_t individual);
@@ -198,7 +206,7 @@ class Dispatcher {
   // Leases in the order made (their deadlines are non-decreasing); a record
   // whose lease already ended is skipped when it reaches the front.
   struct LeaseRecord {
-    Clock::time_point deadline;
+    TimePoint deadline;
     uint64_t individual;
     uint64_t lease;
   };

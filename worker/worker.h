@@ -69,7 +69,8 @@ class Worker {
   // kLost: the master fell silent (kLostAfterWelcome: after welcoming us,
   // so the backoff starts again from its minimum).
   enum class SessionEnd { kStopped, kRefused, kLost, kLostAfterWelcome };
-  SessionEnd RunSession(zmq::context_t& context);
+  // One connection to a master, from its hello to its end (session.h).
+  class Session;
 
   WorkerOptions options_;
   std::string host_;

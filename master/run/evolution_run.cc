@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cstdio>
 #include <thread>
 
@@ -13,12 +12,6 @@
 
 namespace animat {
 namespace {
-
-double SteadySeconds() {
-  return std::chrono::duration<double>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
 
 // Results are committed at least this often (and before any decision that
 // reads them back).
@@ -157,7 +150,8 @@ Status EvolutionRun::Flush(Dispatcher* dispatcher) {
 Status EvolutionRun::Run(
     Dispatcher* dispatcher, const std::atomic<bool>& stop,
     const std::function<void(const GenerationReport&)>& progress) {
-  started_ = SteadySeconds();
+  clock_ = &dispatcher->clock();
+  started_ = clock_->Seconds();
   // Whatever was made and not evaluated before (a resumed run) goes out
   // first.
   Result<std::vector<uint64_t>> pending = store_->Unevaluated(run_id_);
@@ -171,11 +165,11 @@ Status EvolutionRun::Run(
     log_(std::to_string(pending->size()) + " evaluations pending");
   }
   Status status = Advance(dispatcher, progress);
-  double last_flush = SteadySeconds();
+  double last_flush = clock_->Seconds();
   while (status.ok() && !finished_ && !stop.load()) {
     status = Serve(dispatcher, 100);
     if (!status.ok()) break;
-    const double now = SteadySeconds();
+    const double now = clock_->Seconds();
     if (!unsaved_.empty() &&
         (now - last_flush >= kFlushSeconds || unsaved_.size() >= kFlushCount ||
          dispatcher->pending() == 0)) {
@@ -218,7 +212,7 @@ Status EvolutionRun::Serve(Dispatcher* dispatcher, int timeout_ms) {
     unsaved_.push_back(std::move(e));
     ++evaluations_;
   }
-  last_served_ = SteadySeconds();
+  last_served_ = clock_->Seconds();
   return status;
 }
 
@@ -380,7 +374,7 @@ Status EvolutionRun::CompleteGeneration(
   if (!status.ok()) return status;
   // Rate and estimate from the generation just finished (the initial
   // population's thousands of quick failures would mislead an average).
-  const double now = SteadySeconds();
+  const double now = clock_->Seconds();
   const double since = now - (last_report_ > 0 ? last_report_ : started_);
   const int64_t done = evaluations_ - evaluations_at_last_report_;
   last_report_ = now;
@@ -496,7 +490,7 @@ Status EvolutionRun::MakeGeneration(
       run_id_, generation, members, count,
       [&](size_t i) -> const lineage::NewIndividual& {
         if (i % 64 == 0 && served.ok() &&
-            SteadySeconds() - last_served_ >= kServeSeconds) {
+            clock_->Seconds() - last_served_ >= kServeSeconds) {
           served = Serve(dispatcher, 0);
         }
         for (size_t m = made.load(std::memory_order_acquire); m <= i;

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "common/base/clock.h"
 #include "common/base/log.h"
 #include "common/base/status.h"
 #include "common/genome/genome.h"
@@ -74,7 +75,8 @@ class EvolutionRun {
   // acknowledge_on_receipt off so that workers keep each result until it
   // is committed) until the run has all its generations or `stop` becomes
   // true; results received so far are committed before returning. `progress`,
-  // if set, is called after each generation completes.
+  // if set, is called after each generation completes. The run keeps time
+  // (commit intervals, rates in the reports) by the dispatcher's clock.
   Status Run(
       Dispatcher* dispatcher, const std::atomic<bool>& stop,
       const std::function<void(const GenerationReport&)>& progress = nullptr);
@@ -157,9 +159,10 @@ class EvolutionRun {
   std::vector<lineage::Score> candidates_;
   bool candidates_loaded_ = false;
   int64_t evaluations_ = 0;
-  double started_ = 0;      // Seconds, steady clock.
-  double last_served_ = 0;  // When Serve last polled the dispatcher.
-  double last_report_ = 0;  // When the last generation completed.
+  const Clock* clock_ = &RealClock();  // The dispatcher's, once Run starts.
+  double started_ = 0;                 // Seconds, clock_.
+  double last_served_ = 0;             // When Serve last polled the dispatcher.
+  double last_report_ = 0;             // When the last generation completed.
   int64_t evaluations_at_last_report_ = 0;
 };
 

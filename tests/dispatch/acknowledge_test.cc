@@ -40,9 +40,9 @@ v1::Envelope ResultOf(const v1::WorkItem& item,
 
 TEST_F(DispatchTest, ResultsAreAcknowledgedOnReceiptByDefault) {
   const Individual one = Population({DataGenome("seed-1198")}, 10)[0];
-  ASSERT_TRUE(StartDispatcher());
+  ASSERT_TRUE(StartDispatcher(SimulatedOptions()));
   Submit({one});
-  FakeWorker fake(context_, dispatcher_->endpoint());
+  FakeWorker fake(context_, dispatcher_->endpoint(), clock_);
   auto pump = [&] { fake.Pump(); };
   fake.Hello(1, 5151);
   ASSERT_TRUE(Serve([&] { return fake.welcomed(); }, kShortWait, pump));
@@ -64,12 +64,12 @@ TEST_F(DispatchTest, ResultsAreAcknowledgedOnReceiptByDefault) {
 TEST_F(DispatchTest, ARecordingMasterAcknowledgesOnceRecordedToWhoeverHoldsIt) {
   const std::vector<Individual> two =
       Population({DataGenome("seed-1198"), DataGenome("seed-1203")}, 20);
-  DispatcherOptions options = Options();
+  DispatcherOptions options = SimulatedOptions();
   options.acknowledge_on_receipt = false;
   ASSERT_TRUE(StartDispatcher(options));
   Submit(two);
-  FakeWorker fake(context_, dispatcher_->endpoint());
-  FakeWorker again(context_, dispatcher_->endpoint());
+  FakeWorker fake(context_, dispatcher_->endpoint(), clock_);
+  FakeWorker again(context_, dispatcher_->endpoint(), clock_);
   auto pump = [&] {
     fake.Pump();
     again.Pump();

@@ -298,8 +298,8 @@ TEST_F(DispatchTest, MasterSurvivesGarbageAndKeepsServingCorrectWork) {
 }
 
 TEST_F(DispatchTest, RefusesAWorkerOfAnotherProtocolVersionSayingWhich) {
-  ASSERT_TRUE(StartDispatcher());
-  FakeWorker peer(context_, dispatcher_->endpoint());
+  ASSERT_TRUE(StartDispatcher(SimulatedOptions()));
+  FakeWorker peer(context_, dispatcher_->endpoint(), clock_);
   peer.set_silent(true);
   v1::Envelope hello = FakeHello(1, 5151);
   hello.mutable_hello()->set_protocol_version(protocol::kVersion + 1);
@@ -324,8 +324,8 @@ TEST_F(DispatchTest, RefusesAWorkerOfAnotherProtocolVersionSayingWhich) {
 // malformed message ... protocol version 2, expected 1" and never sends
 // the Refuse, and the worker retries for ever without being told why.
 TEST_F(DispatchTest, RefusesAWorkerWhoseEnvelopesCarryAnotherVersion) {
-  ASSERT_TRUE(StartDispatcher());
-  FakeWorker peer(context_, dispatcher_->endpoint());
+  ASSERT_TRUE(StartDispatcher(SimulatedOptions()));
+  FakeWorker peer(context_, dispatcher_->endpoint(), clock_);
   peer.set_silent(true);
   v1::Envelope hello = FakeHello(1, 5252);
   hello.set_protocol_version(protocol::kVersion + 1);
@@ -353,9 +353,9 @@ TEST_F(DispatchTest, RefusesAWorkerWhoseEnvelopesCarryAnotherVersion) {
 TEST_F(DispatchTest, HelloClaimingHugeThreadCountDoesNotOverflowTheCreditCap) {
   GTEST_FLAG_SET(death_test_style, "threadsafe");
   const auto gets_work = [this]() -> int {
-    if (!StartDispatcher()) return 2;
+    if (!StartDispatcher(SimulatedOptions())) return 2;
     Submit(Population(MixedGenomes(1), 1));
-    FakeWorker peer(context_, dispatcher_->endpoint());
+    FakeWorker peer(context_, dispatcher_->endpoint(), clock_);
     peer.Send(FakeHello(1 << 29, 6161));
     if (!Serve([&] { return peer.welcomed(); }, kShortWait,
                [&] { peer.Pump(); })) {
@@ -457,8 +457,8 @@ TEST_F(DispatchTest, WorkerSurvivesGarbageFromItsMasterAndAnswersCorrectly) {
     return results.count(1) != 0 && results.count(2) != 0 &&
            results.count(3) != 0;
   };
-  const auto end = Clock::now() + kLongWait;
-  while (!all_answered() && Clock::now() < end) {
+  const auto end = Steady::now() + kLongWait;
+  while (!all_answered() && Steady::now() < end) {
     master.ReceiveEnvelope(
         id, milliseconds(50),
         [&](const v1::Envelope& e) {
@@ -563,8 +563,8 @@ TEST_F(DispatchTest, WorkerRefusedByAMasterOfAnotherVersionExitsWithCode3) {
   master.SendFrames(hello->identity, {refuse.SerializeAsString()});
   // Until the worker has read the refusal (a log line either way), then a
   // little longer for it to exit.
-  const auto end = Clock::now() + kShortWait;
-  while (worker.Running() && Clock::now() < end &&
+  const auto end = Steady::now() + kShortWait;
+  while (worker.Running() && Steady::now() < end &&
          worker.output().find("refuse") == std::string::npos &&
          worker.output().find("ignored") == std::string::npos) {
     std::this_thread::sleep_for(milliseconds(10));

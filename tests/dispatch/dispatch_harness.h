@@ -1,9 +1,17 @@
-// The fixture of the dispatch tests: an in-process Dispatcher on a free
-// loopback port with short heartbeats, its log lines captured, populations
-// of genomes with their results computed directly (animat::Evaluate in this
-// process), and a serve loop that records every completion so a test can
-// check that each individual completed exactly once, with the same bits as
-// the direct evaluation, whichever worker did it.
+// The fixture of the dispatch tests: an in-process Dispatcher with short
+// heartbeats, its log lines captured, populations of genomes with their
+// results computed directly (animat::Evaluate in this process), and a serve
+// loop that records every completion so a test can check that each
+// individual completed exactly once, with the same bits as the direct
+// evaluation, whichever worker did it.
+//
+// Two kinds of time. With real animat-worker processes the dispatcher is on
+// a free loopback port and keeps real time. With workers played by the test
+// (FakeWorker) it can run on simulated time instead (SimulatedOptions): an
+// inproc:// endpoint, where a message sent is there to read at once, and a
+// ManualClock that the serve loop advances by kSimulatedStep between
+// passes, so that leases, heartbeats and liveness take no real time and
+// expire exactly when they should.
 #ifndef ANIMAT_TESTS_DISPATCH_DISPATCH_HARNESS_H_
 #define ANIMAT_TESTS_DISPATCH_DISPATCH_HARNESS_H_
 
@@ -28,6 +36,7 @@
 
 #include "animat/v1/genome.pb.h"
 #include "animat/v1/trace.pb.h"
+#include "common/base/clock.h"
 #include "common/base/rng.h"
 #include "common/evaluation/evaluator.h"
 #include "common/evaluation/model_config.h"
@@ -37,13 +46,14 @@
 #include "common/protocol/genome_wire.h"
 #include "common/protocol/protocol.h"
 #include "master/dispatcher.h"
+#include "tests/dispatch/fake_peers.h"
 #include "tests/dispatch/worker_process.h"
 #include "tests/test_util.h"
 
 namespace animat::testing {
 
 using std::chrono::milliseconds;
-using Clock = std::chrono::steady_clock;
+using Steady = std::chrono::steady_clock;
 
 // Heartbeat interval of every test: a peer silent for 300 ms is dead.
 inline constexpr int kHeartbeatMs = 100;
@@ -56,9 +66,13 @@ inline constexpr int kMotionStepsFor100Ms = 40000;
 inline constexpr int kMotionStepsFor100Ms = 4000;
 #endif
 // Bounds on waits that normally end far sooner (they end as soon as the
-// condition holds); generous for sanitizer builds.
+// condition holds); generous for sanitizer builds. On simulated time, of
+// the simulated clock.
 inline constexpr milliseconds kLongWait{30000};
 inline constexpr milliseconds kShortWait{10000};
+// On simulated time: how far the clock moves between two passes of the
+// serve loop.
+inline constexpr milliseconds kSimulatedStep{5};
 
 // A genome of tests/data/genomes.
 inline v1::Genome DataGenome(const std::string& name) {
@@ -258,11 +272,23 @@ class DispatchTest : public ::testing::Test {
     options.log = log_.Sink();
     return options;
   }
+  // On simulated time (clock_), for workers played by the test: a fresh
+  // inproc:// endpoint in context_.
+  DispatcherOptions SimulatedOptions() {
+    static int count = 0;
+    DispatcherOptions options = Options();
+    options.endpoint = "inproc://dispatch-test-" + std::to_string(++count);
+    options.clock = &clock_;
+    return options;
+  }
+  bool simulated() const {
+    return dispatcher_ != nullptr && &dispatcher_->clock() == &clock_;
+  }
 
   // Binds a dispatcher for config_ (retrying while the address is still
   // held by a dispatcher just destroyed); false on failure.
   bool StartDispatcher(DispatcherOptions options) {
-    const auto end = Clock::now() + kShortWait;
+    const auto end = Steady::now() + kShortWait;
     for (;;) {
       Result<std::unique_ptr<Dispatcher>> created =
           Dispatcher::Create(&context_, options, config_);
@@ -270,7 +296,7 @@ class DispatchTest : public ::testing::Test {
         dispatcher_ = std::move(created).value();
         return true;
       }
-      if (Clock::now() >= end) {
+      if (Steady::now() >= end) {
         ADD_FAILURE() << created.status().ToString();
         return false;
       }
@@ -312,16 +338,29 @@ class DispatchTest : public ::testing::Test {
 
   // Serves (Poll in short slices, calling `tick` before each) until `done`
   // holds or `timeout` passes; returns `done()`. Every completion is kept.
+  // On simulated time each slice is one pass (Poll(0)), after which the
+  // clock moves kSimulatedStep: no real time is waited for.
   bool Serve(const std::function<bool()>& done, milliseconds timeout,
              const std::function<void()>& tick = {}) {
-    const auto end = Clock::now() + timeout;
+    const bool simulated_time = simulated();
+    const Clock& clock = dispatcher_->clock();
+    const auto end = clock.Now() + timeout;
     for (;;) {
       if (tick) tick();
-      for (Completion& c : dispatcher_->Poll(10)) {
+      for (Completion& c : dispatcher_->Poll(simulated_time ? 0 : 10)) {
         completions_.push_back(std::move(c));
       }
       if (done()) return true;
-      if (Clock::now() >= end) return false;
+      if (clock.Now() >= end) return false;
+      if (simulated_time) clock_.Advance(kSimulatedStep);
+    }
+  }
+  // On simulated time: moves the clock by `by`, then makes one pass.
+  void AdvanceAndPoll(milliseconds by, const std::function<void()>& tick = {}) {
+    clock_.Advance(by);
+    if (tick) tick();
+    for (Completion& c : dispatcher_->Poll(0)) {
+      completions_.push_back(std::move(c));
     }
   }
   // Serves for `duration`, whatever happens.
@@ -331,6 +370,24 @@ class DispatchTest : public ::testing::Test {
   bool ServeUntilAllDone(milliseconds timeout = kLongWait,
                          const std::function<void()>& tick = {}) {
     return Serve([this] { return dispatcher_->pending() == 0; }, timeout, tick);
+  }
+
+  // A tick that makes `fake` a worker that works instantly: it pumps it
+  // and answers every item it holds and has not answered yet with the
+  // direct result under config_, giving the credit back. `answered`
+  // counts the items answered so far.
+  void Answer(FakeWorker& fake, size_t* answered) {
+    fake.Pump();
+    for (; *answered < fake.work_items().size(); ++*answered) {
+      const v1::WorkItem& item = fake.work_items()[*answered];
+      v1::Envelope results;
+      v1::WorkResult* r = results.mutable_results()->add_results();
+      r->set_individual(item.individual());
+      r->set_genome_hash(item.genome_hash());
+      *r->mutable_result() = DirectResult(item.genome(), config_);
+      fake.Send(results);
+      fake.Credit(1);
+    }
   }
 
   int CompletionsOf(uint64_t id) const {
@@ -381,6 +438,7 @@ class DispatchTest : public ::testing::Test {
   }
 
   zmq::context_t context_{1};
+  ManualClock clock_;  // Simulated time (SimulatedOptions).
   ModelConfig config_;
   LogLines log_;
   std::unique_ptr<Dispatcher> dispatcher_;

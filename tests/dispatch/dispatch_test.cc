@@ -1,8 +1,10 @@
-// Fault tolerance of the master-worker dispatch, with real sockets and real
-// animat-worker processes: workers killed, frozen, terminated, joining
-// late; the master restarting; leases expiring; a genome that kills its
-// workers. Whatever happens, every individual completes exactly once, with
-// the bits of a direct evaluation of its genome.
+// Fault tolerance of the master-worker dispatch: with real sockets and real
+// animat-worker processes, workers killed, frozen, terminated, joining
+// late, and the master restarting; with workers played by the test, on
+// simulated time, leases expiring, silent workers dropped, heartbeats, and
+// a genome that kills its workers. Whatever happens, every individual
+// completes exactly once, with the bits of a direct evaluation of its
+// genome.
 #include <algorithm>
 #include <csignal>
 #include <map>
@@ -197,7 +199,7 @@ TEST_F(DispatchTest, GenomeThatKillsWorkersIsGivenUpAfterThreeAttempts) {
   const Individual suspect = Population({DataGenome("seed-139")}, 900)[0];
   const Individual companion = Population({DataGenome("seed-1198")}, 901)[0];
   const std::vector<Individual> others = Population(MixedGenomes(10), 910);
-  ASSERT_TRUE(StartDispatcher());
+  ASSERT_TRUE(StartDispatcher(SimulatedOptions()));
   Submit({suspect, companion});
   Submit(others);
 
@@ -208,7 +210,7 @@ TEST_F(DispatchTest, GenomeThatKillsWorkersIsGivenUpAfterThreeAttempts) {
     SCOPED_TRACE("round " + std::to_string(round));
     const uint64_t pid = 7000 + round;
     {
-      FakeWorker fake(context_, dispatcher_->endpoint());
+      FakeWorker fake(context_, dispatcher_->endpoint(), clock_);
       fake.Hello(1, pid);
       ASSERT_TRUE(Serve([&] { return fake.welcomed(); }, kShortWait,
                         [&] { fake.Pump(); }));
@@ -242,10 +244,13 @@ TEST_F(DispatchTest, GenomeThatKillsWorkersIsGivenUpAfterThreeAttempts) {
   EXPECT_EQ(log_.Count({"gave up on individual 900 after 3 attempts"}), 1);
   EXPECT_EQ(CompletionsOf(suspect.id), 1);
 
-  // The others, the companion included, complete normally on a real
-  // worker.
-  WorkerProcess worker(Worker(2));
-  ASSERT_TRUE(ServeUntilAllDone());
+  // The others, the companion included, complete normally on a worker
+  // that answers.
+  FakeWorker worker(context_, dispatcher_->endpoint(), clock_);
+  worker.Hello(2, 7900);
+  worker.Credit(4);
+  size_t answered = 0;
+  ASSERT_TRUE(ServeUntilAllDone(kLongWait, [&] { Answer(worker, &answered); }));
   std::vector<Individual> evaluated = others;
   evaluated.push_back(companion);
   completions_.erase(std::remove_if(completions_.begin(), completions_.end(),
@@ -257,20 +262,20 @@ TEST_F(DispatchTest, GenomeThatKillsWorkersIsGivenUpAfterThreeAttempts) {
   const Completion* retried = FindCompletion(companion.id);
   ASSERT_NE(retried, nullptr);
   EXPECT_EQ(retried->attempts, 1);
-  EXPECT_EQ(retried->worker, worker.name());
+  EXPECT_EQ(retried->worker, "fake-worker:7900");
   EXPECT_EQ(dispatcher_->stats().gave_up, 1);
 }
 
 TEST_F(DispatchTest, IndividualWhoseLeaseExpiresThreeTimesIsGivenUp) {
   const Individual stuck = Population({DataGenome("seed-139")}, 1300)[0];
-  DispatcherOptions options = Options();
+  DispatcherOptions options = SimulatedOptions();
   options.lease_ms = 200;
   ASSERT_TRUE(StartDispatcher(options));
   Submit({stuck});
 
   // A worker that stays alive and takes the individual each time it is
   // offered, and never answers.
-  FakeWorker fake(context_, dispatcher_->endpoint());
+  FakeWorker fake(context_, dispatcher_->endpoint(), clock_);
   auto pump = [&] { fake.Pump(); };
   fake.Hello(1, 4444);
   ASSERT_TRUE(Serve([&] { return fake.welcomed(); }, kShortWait, pump));
@@ -307,14 +312,14 @@ TEST_F(DispatchTest, IndividualWhoseLeaseExpiresThreeTimesIsGivenUp) {
 // different worker.
 TEST_F(DispatchTest, WorkerReconnectingUnderItsInstanceCostsNoAttempt) {
   const Individual held = Population({DataGenome("seed-139")}, 1400)[0];
-  ASSERT_TRUE(StartDispatcher(Options()));
+  ASSERT_TRUE(StartDispatcher(SimulatedOptions()));
   Submit({held});
   constexpr uint64_t kInstance = 0x5eed5eed5eed5eedull;
   std::vector<std::unique_ptr<FakeWorker>> sessions;
   for (int session = 1; session <= protocol::kMaxAttempts + 2; ++session) {
     SCOPED_TRACE("session " + std::to_string(session));
-    sessions.push_back(
-        std::make_unique<FakeWorker>(context_, dispatcher_->endpoint()));
+    sessions.push_back(std::make_unique<FakeWorker>(
+        context_, dispatcher_->endpoint(), clock_));
     FakeWorker& fake = *sessions.back();
     auto pump = [&] { fake.Pump(); };
     fake.Hello(1, 4444, kInstance);
@@ -335,7 +340,7 @@ TEST_F(DispatchTest, WorkerReconnectingUnderItsInstanceCostsNoAttempt) {
 
   // Another process under the same host:pid does not replace it.
   FakeWorker& current = *sessions.back();
-  FakeWorker other(context_, dispatcher_->endpoint());
+  FakeWorker other(context_, dispatcher_->endpoint(), clock_);
   auto pump_both = [&] {
     current.Pump();
     other.Pump();
@@ -368,7 +373,7 @@ TEST_F(DispatchTest, WorkerReconnectingUnderItsInstanceCostsNoAttempt) {
 TEST_F(DispatchTest, SuspectIsLeasedAloneSoItDoesNotTakeOthersDownWithIt) {
   const Individual suspect = Population({DataGenome("seed-139")}, 950)[0];
   const Individual companion = Population({DataGenome("seed-1198")}, 951)[0];
-  ASSERT_TRUE(StartDispatcher());
+  ASSERT_TRUE(StartDispatcher(SimulatedOptions()));
   Submit({suspect, companion});
 
   // Workers asking for 2 items each (as a real one-thread worker does);
@@ -379,7 +384,7 @@ TEST_F(DispatchTest, SuspectIsLeasedAloneSoItDoesNotTakeOthersDownWithIt) {
     SCOPED_TRACE("round " + std::to_string(round));
     const uint64_t pid = 7100 + round;
     {
-      FakeWorker fake(context_, dispatcher_->endpoint());
+      FakeWorker fake(context_, dispatcher_->endpoint(), clock_);
       fake.Hello(1, pid);
       ASSERT_TRUE(Serve([&] { return fake.welcomed(); }, kShortWait,
                         [&] { fake.Pump(); }));
@@ -420,8 +425,11 @@ TEST_F(DispatchTest, SuspectIsLeasedAloneSoItDoesNotTakeOthersDownWithIt) {
   ASSERT_NE(given_up, nullptr);
   EXPECT_EQ(given_up->result.status(), v1::EvaluationResult::NOT_EVALUATED);
 
-  WorkerProcess worker(Worker(1));
-  ASSERT_TRUE(ServeUntilAllDone());
+  FakeWorker worker(context_, dispatcher_->endpoint(), clock_);
+  worker.Hello(1, 7199);
+  worker.Credit(2);
+  size_t answered = 0;
+  ASSERT_TRUE(ServeUntilAllDone(kLongWait, [&] { Answer(worker, &answered); }));
   const Completion* retried = FindCompletion(companion.id);
   ASSERT_NE(retried, nullptr);
   ExpectSameResult(retried->result, companion.expected, companion.id);
@@ -436,9 +444,9 @@ TEST_F(DispatchTest, SuspectIsLeasedAloneSoItDoesNotTakeOthersDownWithIt) {
 // waiting during the last millisecond of each Poll (the remaining time is
 // truncated to 0 ms). Thousands of lines per vanished worker.
 TEST_F(DispatchTest, VanishedWorkerCostsAFewLogLinesNotThousands) {
-  ASSERT_TRUE(StartDispatcher());
+  ASSERT_TRUE(StartDispatcher(SimulatedOptions()));
   {
-    FakeWorker fake(context_, dispatcher_->endpoint());
+    FakeWorker fake(context_, dispatcher_->endpoint(), clock_);
     fake.Hello(1, 8080);
     ASSERT_TRUE(Serve([&] { return fake.welcomed(); }, kShortWait,
                       [&] { fake.Pump(); }));
@@ -539,36 +547,41 @@ TEST_F(DispatchTest, NullEvaluationWorkersAreRefusedUnlessAccepted) {
 }
 
 TEST_F(DispatchTest, ExpiredLeaseGoesToAnotherWorkerAndTheLateResultIsIgnored) {
-  // Genomes that fail fast (random ones), so that no lease of the real
-  // worker comes near the short lease time, even in a sanitizer build.
   std::vector<v1::Genome> genomes = MixedGenomes(18);
   genomes.erase(genomes.begin(), genomes.begin() + 6);
   const std::vector<Individual> population = Population(genomes, 1200);
   const Individual& held = population[0];
-  DispatcherOptions options = Options();
+  DispatcherOptions options = SimulatedOptions();
   options.lease_ms = 300;
   ASSERT_TRUE(StartDispatcher(options));
   Submit({held});
 
   // A worker that takes the individual, keeps heart-beating, and does not
   // answer.
-  FakeWorker fake(context_, dispatcher_->endpoint());
+  FakeWorker fake(context_, dispatcher_->endpoint(), clock_);
   fake.Hello(1, 4321);
   ASSERT_TRUE(
       Serve([&] { return fake.welcomed(); }, kShortWait, [&] { fake.Pump(); }));
   fake.Credit(1);
   ASSERT_TRUE(Serve([&] { return !fake.work_items().empty(); }, kShortWait,
                     [&] { fake.Pump(); }));
-  WorkerProcess worker(Worker(2));
-  ASSERT_TRUE(worker.started());
+  // And one that answers everything at once.
+  FakeWorker worker(context_, dispatcher_->endpoint(), clock_);
+  worker.Hello(2, 4322);
+  worker.Credit(4);
+  size_t answered = 0;
+  const auto pump = [&] {
+    fake.Pump();
+    Answer(worker, &answered);
+  };
   Submit({population.begin() + 1, population.end()});
 
-  ASSERT_TRUE(ServeUntilAllDone(kLongWait, [&] { fake.Pump(); }));
+  ASSERT_TRUE(ServeUntilAllDone(kLongWait, pump));
   EXPECT_EQ(
       log_.Count({"lease of individual 1200 on fake-worker:4321 expired"}), 1)
       << log_.Dump();
   ASSERT_NE(FindCompletion(held.id), nullptr);
-  EXPECT_EQ(FindCompletion(held.id)->worker, worker.name());
+  EXPECT_EQ(FindCompletion(held.id)->worker, "fake-worker:4322");
   EXPECT_EQ(FindCompletion(held.id)->attempts, 1);
 
   // Now the fake answers, late and wrong: ignored.
@@ -581,17 +594,94 @@ TEST_F(DispatchTest, ExpiredLeaseGoesToAnotherWorkerAndTheLateResultIsIgnored) {
   r->mutable_result()->set_fitness(12345.0);
   fake.Send(late);
   ASSERT_TRUE(Serve([&] { return dispatcher_->stats().ignored > ignored; },
-                    kShortWait, [&] { fake.Pump(); }));
+                    kShortWait, pump));
   EXPECT_EQ(log_.Count({"ignored a result for individual 1200 from "
                         "fake-worker:4321 (unknown or already complete)"}),
             1)
       << log_.Dump();
-  ServeFor(milliseconds(50), [&] { fake.Pump(); });
+  ServeFor(milliseconds(50), pump);
 
   ExpectEachCompletedOnceAsEvaluatedDirectly(population);
   EXPECT_EQ(fake.work_items().size(), 1u);  // Not given to it again.
   EXPECT_EQ(dispatcher_->workers(), 2u);    // Kept alive by heartbeats.
   EXPECT_EQ(log_.Count({"fake-worker:4321 silent"}), 0);
+}
+
+// On simulated time the deadlines can be checked to the millisecond.
+
+TEST_F(DispatchTest, LeaseExpiresOnceLeaseMsHavePassedAndNotBefore) {
+  const Individual held = Population({DataGenome("seed-139")}, 1500)[0];
+  DispatcherOptions options = SimulatedOptions();
+  options.lease_ms = 200;
+  ASSERT_TRUE(StartDispatcher(options));
+  Submit({held});
+  FakeWorker fake(context_, dispatcher_->endpoint(), clock_);
+  fake.Hello(1, 4545);
+  fake.Credit(1);
+  AdvanceAndPoll(milliseconds(0));  // Greeted and leased, now.
+  fake.Pump();
+  ASSERT_EQ(fake.work_items().size(), 1u) << log_.Dump();
+
+  AdvanceAndPoll(milliseconds(options.lease_ms));
+  EXPECT_EQ(log_.Count({"expired"}), 0) << log_.Dump();
+  EXPECT_EQ(dispatcher_->stats().requeued, 0);
+  AdvanceAndPoll(milliseconds(1));
+  EXPECT_EQ(log_.Count({"lease of individual 1500 on fake-worker:4545 "
+                        "expired"}),
+            1)
+      << log_.Dump();
+  EXPECT_EQ(dispatcher_->stats().requeued, 1);
+  EXPECT_EQ(dispatcher_->workers(), 1u);  // Not silent for long enough.
+}
+
+TEST_F(DispatchTest, WorkerIsDroppedOnlyAfterThreeHeartbeatsOfSilence) {
+  const Individual held = Population({DataGenome("seed-139")}, 1600)[0];
+  ASSERT_TRUE(StartDispatcher(SimulatedOptions()));
+  Submit({held});
+  FakeWorker fake(context_, dispatcher_->endpoint(), clock_);
+  fake.set_silent(true);
+  fake.Hello(1, 4646);
+  fake.Credit(1);
+  AdvanceAndPoll(milliseconds(0));  // Heard from, now.
+  ASSERT_EQ(dispatcher_->workers(), 1u) << log_.Dump();
+
+  // Any message is a sign of life: the silence starts again.
+  AdvanceAndPoll(milliseconds(250));
+  fake.Heartbeat();
+  AdvanceAndPoll(milliseconds(0));
+  AdvanceAndPoll(milliseconds(protocol::kLiveness * kHeartbeatMs));
+  EXPECT_EQ(dispatcher_->workers(), 1u) << log_.Dump();
+  AdvanceAndPoll(milliseconds(1));
+  EXPECT_EQ(dispatcher_->workers(), 0u);
+  EXPECT_EQ(log_.Count({"worker fake-worker:4646 silent for 300 ms; 1 leases "
+                        "back in the queue"}),
+            1)
+      << log_.Dump();
+  EXPECT_EQ(dispatcher_->stats().requeued, 1);
+}
+
+TEST_F(DispatchTest, MasterSendsAHeartbeatAfterAnIntervalWithoutMessages) {
+  ASSERT_TRUE(StartDispatcher(SimulatedOptions()));
+  FakeWorker fake(context_, dispatcher_->endpoint(), clock_);
+  const auto heartbeats = [&] {
+    fake.Pump();
+    int n = 0;
+    for (const v1::Envelope& e : fake.received()) n += e.has_heartbeat();
+    return n;
+  };
+  fake.Hello(1, 4747);
+  AdvanceAndPoll(milliseconds(0));  // Welcomed, now.
+  fake.Pump();
+  ASSERT_TRUE(fake.welcomed());
+
+  AdvanceAndPoll(milliseconds(kHeartbeatMs - 1));
+  EXPECT_EQ(heartbeats(), 0);
+  AdvanceAndPoll(milliseconds(1));
+  EXPECT_EQ(heartbeats(), 1);
+  AdvanceAndPoll(milliseconds(kHeartbeatMs - 1));
+  EXPECT_EQ(heartbeats(), 1);
+  AdvanceAndPoll(milliseconds(1));
+  EXPECT_EQ(heartbeats(), 2);
 }
 
 }  // namespace

@@ -4,8 +4,10 @@
 //
 // FakeWorker is a DEALER connected to a master; FakeMaster a ROUTER bound
 // on a free loopback port. Both send exactly what the test asks, record
-// what arrives, and never block longer than asked. Not thread-safe; the
-// sockets must be destroyed before their context.
+// what arrives, and never block longer than asked. A FakeWorker keeps its
+// heartbeats by a clock (a ManualClock in tests on simulated time);
+// FakeMaster by real time. Not thread-safe; the sockets must be destroyed
+// before their context.
 #ifndef ANIMAT_TESTS_DISPATCH_FAKE_PEERS_H_
 #define ANIMAT_TESTS_DISPATCH_FAKE_PEERS_H_
 
@@ -18,6 +20,7 @@
 #include <zmq.hpp>
 
 #include "animat/v1/protocol.pb.h"
+#include "common/base/clock.h"
 #include "common/protocol/protocol.h"
 #include "common/protocol/zmq_poll.h"
 
@@ -41,8 +44,12 @@ inline v1::Envelope FakeHello(int threads, uint64_t pid,
 
 class FakeWorker {
  public:
-  FakeWorker(zmq::context_t& context, const std::string& endpoint)
-      : socket_(context, zmq::socket_type::dealer) {
+  // `clock` must outlive the worker.
+  FakeWorker(zmq::context_t& context, const std::string& endpoint,
+             const animat::Clock& clock = animat::RealClock())
+      : socket_(context, zmq::socket_type::dealer),
+        clock_(clock),
+        last_sent_(clock.Now()) {
     socket_.set(zmq::sockopt::linger, 0);
     socket_.connect(endpoint);
   }
@@ -54,7 +61,7 @@ class FakeWorker {
                                                ? zmq::send_flags::sndmore
                                                : zmq::send_flags::none);
     }
-    last_sent_ = Clock::now();
+    last_sent_ = clock_.Now();
   }
   void SendRaw(const std::string& bytes) { SendFrames({bytes}); }
   // One frame of `size` bytes at `data`, not copied: `data` must outlive
@@ -63,7 +70,7 @@ class FakeWorker {
     zmq::message_t message(
         const_cast<void*>(data), size, [](void*, void*) {}, nullptr);
     socket_.send(message, zmq::send_flags::none);
-    last_sent_ = Clock::now();
+    last_sent_ = clock_.Now();
   }
   // Stamped with this build's protocol version.
   void Send(const v1::Envelope& envelope) {
@@ -100,7 +107,7 @@ class FakeWorker {
   int disconnects() const { return disconnects_; }
 
   // Reads whatever has arrived, without waiting, and sends a heartbeat when
-  // nothing was sent for 40 ms (unless `silent`).
+  // nothing was sent for 40 ms of its clock (unless `silent`).
   void Pump() {
     for (zmq::message_t event;
          monitor_ != nullptr &&
@@ -125,13 +132,20 @@ class FakeWorker {
       if (envelope->has_refuse()) refusal_ = envelope->refuse().reason();
       received_.push_back(std::move(envelope).value());
     }
-    if (!silent_ && Clock::now() - last_sent_ > std::chrono::milliseconds(40)) {
+    if (!silent_ && clock_.Now() - last_sent_ > std::chrono::milliseconds(40)) {
       Heartbeat();
     }
   }
 
   // Stops the automatic heartbeats of Pump.
   void set_silent(bool silent) { silent_ = silent; }
+
+  // Waits up to `timeout` (real time) for something to read, then Pumps.
+  void PumpWhenReady(std::chrono::milliseconds timeout) {
+    zmq::pollitem_t item = {static_cast<void*>(socket_), 0, ZMQ_POLLIN, 0};
+    protocol::Poll(&item, 1, timeout);
+    Pump();
+  }
 
   bool welcomed() const { return welcomed_; }
   const std::optional<std::string>& refusal() const { return refusal_; }
@@ -141,12 +155,11 @@ class FakeWorker {
   int undecodable() const { return undecodable_; }
 
  private:
-  using Clock = std::chrono::steady_clock;
-
   zmq::socket_t socket_;
+  const animat::Clock& clock_;
   std::unique_ptr<zmq::socket_t> monitor_;
   int disconnects_ = 0;
-  Clock::time_point last_sent_ = Clock::now();
+  animat::Clock::TimePoint last_sent_;
   bool silent_ = false;
   bool welcomed_ = false;
   std::optional<std::string> refusal_;
@@ -195,15 +208,16 @@ class FakeMaster {
   std::optional<RoutedMessage> ReceiveEnvelope(
       const std::string& identity, std::chrono::milliseconds timeout,
       Predicate wanted, std::vector<v1::Envelope>* seen = nullptr) {
-    const auto end = Clock::now() + timeout;
-    auto last_beat = Clock::now();
-    while (Clock::now() < end) {
+    using Steady = std::chrono::steady_clock;
+    const auto end = Steady::now() + timeout;
+    auto last_beat = Steady::now();
+    while (Steady::now() < end) {
       if (!identity.empty() &&
-          Clock::now() - last_beat > std::chrono::milliseconds(40)) {
+          Steady::now() - last_beat > std::chrono::milliseconds(40)) {
         v1::Envelope beat;
         beat.mutable_heartbeat();
         Send(identity, beat);
-        last_beat = Clock::now();
+        last_beat = Steady::now();
       }
       std::optional<RoutedMessage> message =
           Receive(std::chrono::milliseconds(20));
@@ -231,8 +245,6 @@ class FakeMaster {
   }
 
  private:
-  using Clock = std::chrono::steady_clock;
-
   zmq::socket_t socket_;
   std::string endpoint_;
 };

@@ -3,6 +3,10 @@
 // a connection of its own, as another process would), so a master killed
 // at any moment leaves every unrecorded result with a worker that will send
 // it again (docs/lineage.md, "Durability").
+//
+// The run serves on a thread of its own, on simulated time (a ManualClock
+// that the test thread advances as it plays the worker, over inproc://), so
+// no heartbeat or liveness depends on how fast either thread runs.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -18,6 +22,7 @@
 #include <vector>
 #include <zmq.hpp>
 
+#include "common/base/clock.h"
 #include "common/protocol/protocol.h"
 #include "master/dispatcher.h"
 #include "master/lineage/sqlite.h"
@@ -73,14 +78,14 @@ TEST(AcknowledgeTest, AResultIsAcknowledgedOnlyOnceTheStoreHoldsIt) {
     Result<std::unique_ptr<EvolutionRun>> run =
         EvolutionRun::Start(store->get(), settings, [](std::string_view) {});
     ASSERT_TRUE(run.ok()) << run.status().ToString();
+    ManualClock clock;
     zmq::context_t context(1);
     DispatcherOptions options;
-    options.endpoint = "tcp://127.0.0.1:*";
-    // Slack: the test thread checks the store between pumps (liveness
-    // 3 s).
-    options.heartbeat_ms = 1000;
+    options.endpoint = "inproc://run-acknowledge-test";
+    options.heartbeat_ms = 100;
     options.acknowledge_on_receipt = false;  // As animat-master.
     options.log = [](std::string_view) {};
+    options.clock = &clock;
     Result<std::unique_ptr<Dispatcher>> dispatcher =
         Dispatcher::Create(&context, options, (*run)->model_config());
     ASSERT_TRUE(dispatcher.ok()) << dispatcher.status().ToString();
@@ -95,7 +100,7 @@ TEST(AcknowledgeTest, AResultIsAcknowledgedOnlyOnceTheStoreHoldsIt) {
 
     // A worker played by the test: every item gets a result at once (OK,
     // fitness 1 + its id / 10^6) and its credit back.
-    FakeWorker fake(context, (*dispatcher)->endpoint());
+    FakeWorker fake(context, (*dispatcher)->endpoint(), clock);
     fake.Hello(1, 6161, 99);
     fake.Credit(64);
     StoreReader reader(path);
@@ -138,17 +143,16 @@ TEST(AcknowledgeTest, AResultIsAcknowledgedOnlyOnceTheStoreHoldsIt) {
     };
     while (!done.load() && std::chrono::steady_clock::now() < deadline) {
       settle();
-      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      clock.Advance(std::chrono::milliseconds(1));
+      fake.PumpWhenReady(std::chrono::milliseconds(1));
     }
     stop.store(true);
     master.join();
     ASSERT_TRUE(status.ok()) << status.ToString();
     EXPECT_TRUE((*run)->finished());
-    // The last acknowledgements, sent as the run ended.
-    for (int i = 0; i < 200; ++i) {
-      settle();
-      std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
+    // The last acknowledgements, sent as the run ended: over inproc://
+    // whatever the master sent is there to read at once.
+    settle();
     EXPECT_TRUE(early.empty()) << early.size()
                                << " results acknowledged before they were "
                                   "recorded, the first "

@@ -1,0 +1,305 @@
+#include "worker/session.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <map>
+#include <string>
+#include <utility>
+
+#include "common/evaluation/model_config.h"
+#include "common/protocol/genome_wire.h"
+#include "common/protocol/protocol.h"
+#include "common/protocol/zmq_poll.h"
+
+namespace animat {
+namespace {
+
+int64_t MillisSince(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration_cast<std::chrono::milliseconds>(
+             std::chrono::steady_clock::now() - t)
+      .count();
+}
+
+// Results kept for a next master at most (a few hundred bytes each).
+constexpr size_t kMaxUnacknowledged = 100000;
+
+}  // namespace
+
+Worker::Session::Session(Worker& worker, zmq::context_t& context)
+    : worker_(worker),
+      options_(worker.options_),
+      socket_(context, zmq::socket_type::dealer),
+      heartbeat_ms_(worker.options_.heartbeat_ms) {
+  socket_.set(zmq::sockopt::linger, 0);
+  socket_.set(zmq::sockopt::maxmsgsize, protocol::kMaxMessageBytes);
+  if (!options_.curve_server_key.empty()) {
+    socket_.set(zmq::sockopt::curve_serverkey, options_.curve_server_key);
+    socket_.set(zmq::sockopt::curve_publickey, options_.curve_public_key);
+    socket_.set(zmq::sockopt::curve_secretkey, options_.curve_secret_key);
+  }
+  socket_.connect(options_.endpoint);
+  last_heard_ = Steady::now();
+  last_sent_ = Steady::now();
+}
+
+Worker::SessionEnd Worker::Session::Run() {
+  SayHello();
+  for (;;) {
+    if (worker_.stop_.load(std::memory_order_relaxed) && !stopping_) {
+      if (!welcomed_) return SessionEnd::kStopped;
+      BeginStopping();
+    }
+    if (stopping_ && Drained()) {
+      SayGoodbye();
+      return SessionEnd::kStopped;
+    }
+    const Events events = Wait();
+    if (events.master) {
+      if (std::optional<SessionEnd> end = Receive()) return *end;
+    }
+    if (pool() && events.pool) CollectFinished();
+    if (welcomed_ && !worker_.unsent_.empty()) SendResults();
+    if (MillisSince(last_sent_) >= heartbeat_ms_) {
+      v1::Envelope heartbeat;
+      heartbeat.mutable_heartbeat();
+      Send(heartbeat);
+    }
+    if (MillisSince(last_heard_) > protocol::kLiveness * heartbeat_ms_) {
+      return Lost();
+    }
+  }
+}
+
+void Worker::Session::SayHello() {
+  v1::Envelope hello;
+  v1::Hello* h = hello.mutable_hello();
+  h->set_protocol_version(protocol::kVersion);
+  h->set_build_id(protocol::BuildId());
+  h->set_threads(options_.threads);
+  h->set_host(worker_.host_);
+  h->set_pid(static_cast<uint64_t>(getpid()));
+  h->set_null_evaluation(options_.null_evaluation);
+  h->set_instance(worker_.instance_);
+  Send(hello);
+}
+
+void Worker::Session::BeginStopping() {
+  stopping_ = true;
+  returned_ = pool() ? pool()->Abandon() : std::vector<uint64_t>{};
+  options_.log("stopping: handing back " + std::to_string(returned_.size()) +
+               " items, finishing " +
+               std::to_string(pool() ? pool()->in_flight() : 0));
+}
+
+void Worker::Session::SayGoodbye() {
+  std::vector<v1::WorkResult>& unsent = worker_.unsent_;
+  if (pool()) {
+    for (v1::WorkResult& r : pool()->TakeFinished()) {
+      unsent.push_back(std::move(r));
+    }
+  }
+  if (!unsent.empty()) {
+    v1::Envelope results;
+    for (v1::WorkResult& r : unsent) {
+      *results.mutable_results()->add_results() = std::move(r);
+    }
+    unsent.clear();
+    Send(results);
+  }
+  v1::Envelope goodbye;
+  for (uint64_t id : returned_) goodbye.mutable_goodbye()->add_returned(id);
+  goodbye.mutable_goodbye()->set_reason("worker stopping");
+  Send(goodbye);
+}
+
+Worker::Session::Events Worker::Session::Wait() {
+  zmq::pollitem_t items[2] = {
+      {static_cast<void*>(socket_), 0, ZMQ_POLLIN, 0},
+      {nullptr, pool() ? pool()->wakeup_fd() : -1, ZMQ_POLLIN, 0}};
+  const int count = pool() ? 2 : 1;
+  const long timeout =
+      std::max<long>(1, std::min<long>(heartbeat_ms_ - MillisSince(last_sent_),
+                                       stopping_ ? 20 : 100));
+  protocol::Poll(items, count, std::chrono::milliseconds(timeout));
+  Events events;
+  events.master = (items[0].revents & ZMQ_POLLIN) != 0;
+  events.pool = (items[1].revents & ZMQ_POLLIN) != 0;
+  return events;
+}
+
+std::optional<Worker::SessionEnd> Worker::Session::Receive() {
+  zmq::message_t frame;
+  while (socket_.recv(frame, zmq::recv_flags::dontwait)) {
+    if (frame.more()) {
+      // A multi-frame message is not ours: drain and drop it.
+      options_.log("ignored a multi-frame message from the master");
+      while (frame.more() && socket_.recv(frame, zmq::recv_flags::dontwait)) {
+      }
+      continue;
+    }
+    Result<v1::Envelope> decoded = protocol::Decode(frame.to_string_view());
+    if (!decoded.ok()) {
+      options_.log("ignored a malformed message from the master: " +
+                   decoded.status().message());
+      continue;
+    }
+    last_heard_ = Steady::now();
+    if (std::optional<SessionEnd> end = Handle(*decoded)) return end;
+  }
+  return std::nullopt;
+}
+
+std::optional<Worker::SessionEnd> Worker::Session::Handle(
+    const v1::Envelope& envelope) {
+  switch (envelope.body_case()) {
+    case v1::Envelope::kWelcome:
+      Welcomed(envelope.welcome());
+      break;
+    case v1::Envelope::kRefuse:
+      options_.log("refused by the master: " + envelope.refuse().reason());
+      return SessionEnd::kRefused;
+    case v1::Envelope::kWork:
+      Accept(envelope.work());
+      break;
+    case v1::Envelope::kHeartbeat:
+      break;
+    case v1::Envelope::kAcknowledge:
+      for (uint64_t id : envelope.acknowledge().individuals()) {
+        worker_.unacknowledged_.erase(id);
+      }
+      break;
+    default:
+      options_.log(std::string("ignored an unexpected ") +
+                   protocol::BodyName(envelope) + " from the master");
+      break;
+  }
+  return std::nullopt;
+}
+
+void Worker::Session::Welcomed(const v1::Welcome& welcome) {
+  ModelConfig config;
+  Status status = ConfigFromProto(welcome.config(), &config);
+  if (!status.ok() ||
+      protocol::ConfigHash(welcome.config()) != welcome.config_hash()) {
+    options_.log(
+        "ignored a welcome with a bad configuration: " +
+        (status.ok() ? std::string("hash mismatch") : status.message()));
+    return;
+  }
+  welcomed_ = true;
+  config_hash_ = welcome.config_hash();
+  if (welcome.heartbeat_ms() > 0) {
+    heartbeat_ms_ = static_cast<int>(welcome.heartbeat_ms());
+  }
+  if (!pool() || worker_.pool_config_hash_ != config_hash_) {
+    pool() = std::make_unique<EvaluationPool>(options_.threads, config,
+                                              options_.null_evaluation);
+    worker_.pool_config_hash_ = config_hash_;
+  }
+  options_.log("welcomed by " + options_.endpoint + " (" +
+               std::to_string(options_.threads) + " threads)");
+  SendCredit(options_.threads * protocol::kPrefetch - pool()->in_flight());
+  uncredited_ = static_cast<int>(worker_.unsent_.size());
+  SendUnacknowledged();
+}
+
+void Worker::Session::SendUnacknowledged() {
+  const std::map<uint64_t, v1::WorkResult>& kept = worker_.unacknowledged_;
+  if (kept.empty()) return;
+  // The last master may have died before recording them; this one takes
+  // those it still needs (they earn no credit: they were counted in the
+  // session that ran them).
+  options_.log("sending again " + std::to_string(kept.size()) +
+               " results not acknowledged by the last master");
+  v1::Envelope results;
+  for (const auto& [id, result] : kept) {
+    *results.mutable_results()->add_results() = result;
+    if (results.results().results_size() == protocol::kMaxBatch) {
+      Send(results);
+      results.mutable_results()->clear_results();
+    }
+  }
+  if (results.results().results_size() > 0) Send(results);
+}
+
+void Worker::Session::Accept(const v1::Work& work) {
+  if (!welcomed_ || work.config_hash() != config_hash_) {
+    options_.log("ignored work for configuration " +
+                 std::to_string(work.config_hash()) +
+                 (welcomed_ ? "" : " before a welcome"));
+    return;
+  }
+  for (const v1::WorkItem& item : work.items()) {
+    if (stopping_) {
+      returned_.push_back(item.individual());  // Handed back.
+    } else {
+      pool()->Submit(item);
+    }
+  }
+}
+
+void Worker::Session::CollectFinished() {
+  for (v1::WorkResult& r : pool()->TakeFinished()) {
+    worker_.unsent_.push_back(std::move(r));
+  }
+}
+
+void Worker::Session::SendResults() {
+  // Results wait in unsent_ for a session that welcomed us; a new master
+  // takes those it still needs and ignores the rest.
+  std::vector<v1::WorkResult> done;
+  done.swap(worker_.unsent_);
+  for (size_t begin = 0; begin < done.size(); begin += protocol::kMaxBatch) {
+    v1::Envelope results;
+    const size_t end = std::min(done.size(), begin + protocol::kMaxBatch);
+    for (size_t i = begin; i < end; ++i) {
+      KeepUnacknowledged(done[i]);
+      *results.mutable_results()->add_results() = std::move(done[i]);
+    }
+    Send(results);
+  }
+  // Results that finished before the welcome were not in flight when its
+  // credit was counted: they earn none now.
+  const int earned = static_cast<int>(done.size()) - uncredited_;
+  uncredited_ = std::max(0, uncredited_ - static_cast<int>(done.size()));
+  if (!stopping_) SendCredit(earned);
+}
+
+void Worker::Session::KeepUnacknowledged(const v1::WorkResult& result) {
+  std::map<uint64_t, v1::WorkResult>& kept = worker_.unacknowledged_;
+  if (kept.size() < kMaxUnacknowledged) {
+    kept[result.individual()] = result;
+  } else if (!warned_unacknowledged_) {
+    warned_unacknowledged_ = true;
+    options_.log("the master has not acknowledged " +
+                 std::to_string(kMaxUnacknowledged) +
+                 " results; no more are kept for a next master");
+  }
+}
+
+void Worker::Session::Send(const v1::Envelope& envelope) {
+  const std::string bytes = protocol::Encode(envelope);
+  const zmq::send_result_t sent =
+      socket_.send(zmq::buffer(bytes), zmq::send_flags::dontwait);
+  if (!sent) {
+    options_.log(std::string("could not send ") + protocol::BodyName(envelope) +
+                 " (no connection)");
+  }
+  last_sent_ = Steady::now();
+}
+
+void Worker::Session::SendCredit(int credit) {
+  if (credit <= 0) return;
+  v1::Envelope envelope;
+  envelope.mutable_credit()->set_credit(credit);
+  Send(envelope);
+}
+
+Worker::SessionEnd Worker::Session::Lost() {
+  if (stopping_) return SessionEnd::kStopped;
+  if (pool()) pool()->Abandon();  // The next master re-sends what it needs.
+  return welcomed_ ? SessionEnd::kLostAfterWelcome : SessionEnd::kLost;
+}
+
+}  // namespace animat
