@@ -1,5 +1,6 @@
 // End-to-end tests of build/bin/animat: the real binary, real files.
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <google/protobuf/struct.pb.h>
 #include <google/protobuf/util/json_util.h>
@@ -30,8 +31,15 @@ using ::animat::testing::Animat;
 using ::animat::testing::Outcome;
 using google::protobuf::Struct;
 
+// A file name of this test's own: ctest runs the tests of this file in
+// parallel processes (and other checkouts may run them at the same time), so
+// the name carries the test's name and the process id.
 std::string Temp(const std::string& name) {
-  return ::testing::TempDir() + "/animat-cli-" + name;
+  const ::testing::TestInfo* test =
+      ::testing::UnitTest::GetInstance()->current_test_info();
+  return ::testing::TempDir() + "/animat-cli-" +
+         (test != nullptr ? std::string(test->name()) + "-" : std::string()) +
+         std::to_string(::getpid()) + "-" + name;
 }
 
 std::vector<std::string> Lines(const std::string& text) {
