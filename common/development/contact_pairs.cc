@@ -40,7 +40,8 @@ bool ContactPairs::Valid(std::span<const Vec2> position) const {
     const Vec2 move = position[i] - built_at_[i];
     // Written so that NaN makes the list invalid; no early exit, so the
     // loop vectorises.
-    valid &= InBounds(position[i]) && move.x * move.x + move.y * move.y <= limit2;
+    valid &=
+        InBounds(position[i]) && move.x * move.x + move.y * move.y <= limit2;
   }
   return valid;
 }
