@@ -9,6 +9,7 @@ packages=(
   protobuf-compiler libprotobuf-dev
   libcli11-dev
   libbullet-dev
+  libeigen3-dev
   libzmq3-dev cppzmq-dev
   libsqlite3-dev sqlite3
   libgtest-dev libgmock-dev libbenchmark-dev

@@ -10,6 +10,10 @@ namespace {
 
 constexpr double kTwoPi = 6.28318530717958647692;
 
+// The skin of the mechanics' pair list (radii; ContactPairs), chosen by
+// measurement (docs/benchmarks.md).
+constexpr double kContactSkin = 0.5;
+
 }  // namespace
 
 template <typename S>
@@ -22,7 +26,8 @@ DevelopmentT<S>::DevelopmentT(const Network& network,
       signal_params_(signal_params),
       sources_(MaternalSources(signal_params)),
       grn_(network, grn_params, params.max_cells),
-      field_(network.morphogen_count(), params.max_cells, signal_params) {}
+      field_(network.morphogen_count(), params.max_cells, signal_params),
+      contacts_(kContactSkin) {}
 
 template <typename S>
 DevelopmentOutcome DevelopmentT<S>::Run(const Observer& observer,
@@ -170,14 +175,16 @@ void DevelopmentT<S>::Mechanics() {
   force_.resize(n);
   for (int sub = 0; sub < params_.mechanics_substeps; ++sub) {
     for (int i = 0; i < n; ++i) force_[i] = {0.0, 0.0};
+    // Only pairs near each other; the others cannot pass the test below.
+    contacts_.Update(x, embryo_.radius, range);
     for (int i = 0; i < n; ++i) {
-      for (int j = i + 1; j < n; ++j) {
+      for (int j : contacts_.Partners(i)) {
         const double s = embryo_.radius[i] + embryo_.radius[j];
         const Vec2 delta = x[j] - x[i];
-        // Most pairs are far apart: rule them out without a square root.
-        // The margin keeps every pair near the range for the exact test
+        // Rule out pairs beyond the range without a square root. The
+        // margin keeps every pair near the range for the exact test
         // below, so the outcome is the same bit for bit.
-        const double reach = range * s * (1.0 + 1e-9);
+        const double reach = ContactPairs::Reach(range, s);
         const double d2 = delta.x * delta.x + delta.y * delta.y;
         if (d2 > reach * reach) continue;
         double d = std::sqrt(d2);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "common/base/vec2.h"
+#include "common/development/contact_pairs.h"
 #include "common/development/development_params.h"
 #include "common/development/signals.h"
 #include "common/geometry/gabriel.h"
@@ -102,6 +103,7 @@ class DevelopmentT {
   GrnBatchT<S> grn_;
   MorphogenFieldT<S> field_;
   std::vector<Vec2> force_;  // Scratch for the mechanics.
+  ContactPairs contacts_;    // The pairs the mechanics examine.
 };
 
 using Development = DevelopmentT<double>;

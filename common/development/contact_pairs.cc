@@ -1,0 +1,75 @@
+#include "common/development/contact_pairs.h"
+
+#include <cassert>
+#include <cmath>
+
+namespace animat {
+namespace {
+
+// Coordinates below this magnitude (radii) have an absolute rounding
+// error below 2^20 · 2^-53 ≈ 1e-10, far below the margin left by the skin.
+constexpr double kBound = 0x1p20;
+
+// A cell may move this fraction of the skin before the list is rebuilt.
+// Two cells then close in by at most 0.9 skin, so a pair left out stays
+// at least 0.1 skin beyond its reach, whatever the rounding of positions
+// and distances below kBound.
+constexpr double kMoveFraction = 0.45;
+
+bool InBounds(Vec2 x) {
+  // False for NaN and infinities too.
+  return std::fabs(x.x) < kBound && std::fabs(x.y) < kBound;
+}
+
+}  // namespace
+
+ContactPairs::ContactPairs(double skin) : skin_(skin) { assert(skin > 0); }
+
+void ContactPairs::Update(std::span<const Vec2> position,
+                          std::span<const double> radius, double range) {
+  assert(position.size() == radius.size());
+  if (!Valid(position)) Build(position, radius, range);
+}
+
+bool ContactPairs::Valid(std::span<const Vec2> position) const {
+  if (builds_ == 0 || position.size() != built_at_.size()) return false;
+  const double limit = kMoveFraction * skin_;
+  const double limit2 = limit * limit;
+  bool valid = true;
+  for (size_t i = 0; i < position.size(); ++i) {
+    const Vec2 move = position[i] - built_at_[i];
+    // Written so that NaN makes the list invalid; no early exit, so the
+    // loop vectorises.
+    valid &=
+        InBounds(position[i]) && move.x * move.x + move.y * move.y <= limit2;
+  }
+  return valid;
+}
+
+void ContactPairs::Build(std::span<const Vec2> position,
+                         std::span<const double> radius, double range) {
+  const int n = static_cast<int>(position.size());
+  ++builds_;
+  built_at_.assign(position.begin(), position.end());
+  begin_.assign(1, 0);
+  partner_.clear();
+  bool in_bounds = true;
+  for (int i = 0; i < n; ++i) in_bounds &= InBounds(position[i]);
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) {
+      const Vec2 delta = position[j] - position[i];
+      const double d2 = delta.x * delta.x + delta.y * delta.y;
+      // Left out only when farther than the mechanics' own pre-filter
+      // would let through, even with the skin added; NaN stays in.
+      const double bound = Reach(range, radius[i] + radius[j]) + skin_;
+      if (d2 > bound * bound) continue;
+      partner_.push_back(j);
+    }
+    begin_.push_back(static_cast<int>(partner_.size()));
+  }
+  // Out of bounds, the list is exact for these positions only: the next
+  // Update() rebuilds it.
+  if (!in_bounds) built_at_.clear();
+}
+
+}  // namespace animat

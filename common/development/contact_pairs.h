@@ -1,0 +1,70 @@
+// The cell pairs that development's mechanics must examine (docs/model.md
+// §4.3): a Verlet list, so that a sub-step looks at the pairs near each
+// other instead of all n(n-1)/2.
+//
+// A pair interacts while d < range · (r_i + r_j). The list holds every
+// pair i < j within that reach plus a margin `skin` (radii) of where the
+// cells were when it was built, in increasing (i, j) order. It stays valid
+// while no cell has moved more than a fraction of the skin since then:
+// two cells that were farther apart than reach + skin cannot have come
+// within reach. Update() rebuilds it when a cell has moved that far, when
+// the cell count has changed, and whenever a coordinate is not finite or
+// beyond 2^20 radii (where the rounding of the distances is no longer far
+// below the margin). A pair left out therefore fails the mechanics' exact
+// test d < range · s: visiting only the listed pairs, in the same order,
+// gives the same forces bit for bit. Radii must not change between
+// rebuilds (development fixes a cell's radius at its birth).
+//
+// Lengths in cell radii. Owns its storage; not thread-safe (one per
+// development).
+#ifndef ANIMAT_COMMON_DEVELOPMENT_CONTACT_PAIRS_H_
+#define ANIMAT_COMMON_DEVELOPMENT_CONTACT_PAIRS_H_
+
+#include <span>
+#include <vector>
+
+#include "common/base/vec2.h"
+
+namespace animat {
+
+class ContactPairs {
+ public:
+  // `skin` > 0: radii added to every pair's reach when the list is built.
+  explicit ContactPairs(double skin);
+
+  // Makes the list valid for these positions and radii (one per cell, in
+  // cell order) and the interaction range (> 0), rebuilding it if needed.
+  void Update(std::span<const Vec2> position, std::span<const double> radius,
+              double range);
+
+  // After Update(): the cells j > i listed with cell i, increasing.
+  std::span<const int> Partners(int i) const {
+    return {partner_.data() + begin_[i], partner_.data() + begin_[i + 1]};
+  }
+
+  // Times the list was built (for tests and benchmarks).
+  long long builds() const { return builds_; }
+
+  // The reach of a pair in the mechanics' pre-filter: a pair farther
+  // apart than this (squared distances compared) is out of range, with a
+  // relative margin of 1e-9 so that every pair near the range goes to
+  // the exact test.
+  static double Reach(double range, double s) {
+    return range * s * (1.0 + 1e-9);
+  }
+
+ private:
+  bool Valid(std::span<const Vec2> position) const;
+  void Build(std::span<const Vec2> position, std::span<const double> radius,
+             double range);
+
+  double skin_;
+  long long builds_ = 0;
+  std::vector<Vec2> built_at_;  // Positions when the list was built.
+  std::vector<int> begin_;      // Cell i's partners: [begin_[i], begin_[i+1]).
+  std::vector<int> partner_;
+};
+
+}  // namespace animat
+
+#endif  // ANIMAT_COMMON_DEVELOPMENT_CONTACT_PAIRS_H_
