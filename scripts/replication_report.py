@@ -300,7 +300,11 @@ def main():
                 r["best"]["fitness"]))
             shown["nearest-" + label] = top
     problems = []
+    drawn = set()
     for label, r in shown.items():
+        if r["name"] in drawn:
+            continue  # Already drawn under another label.
+        drawn.add(r["name"])
         base = os.path.join(args.dest, f"{label}-{r['name']}")
         ident = ["--db", r["db"], "--individual", str(r["best"]["id"])]
         for kind in ("strip", "activity", "cells"):
