@@ -16,6 +16,7 @@
 #include <string>
 
 #include "cli/commands.h"
+#include "common/base/text.h"
 #include "common/io/proto_file.h"
 #include "master/lineage/queries.h"
 #include "master/lineage/schema.h"
@@ -33,9 +34,7 @@ struct Options {
 
 std::string FitnessText(const std::optional<double>& fitness) {
   if (!fitness) return "-";
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.17g", *fitness);
-  return text;
+  return ShortestDouble(*fitness);
 }
 
 // The body's lines, as `animat simulate` prints them (none for a store
@@ -43,9 +42,10 @@ std::string FitnessText(const std::optional<double>& fitness) {
 void PrintBody(const v1::BodySummary& body) {
   std::printf(
       "cells: %d\nsprings: %d\nchambers: %d\nskin_edges: %d\n"
-      "spread_major: %.17g\nspread_minor: %.17g\n",
+      "spread_major: %s\nspread_minor: %s\n",
       body.cells(), body.springs(), body.chambers(), body.skin_edges(),
-      body.spread_major(), body.spread_minor());
+      ShortestDouble(body.spread_major()).c_str(),
+      ShortestDouble(body.spread_minor()).c_str());
 }
 
 template <typename Body>
