@@ -24,5 +24,22 @@ TEST(TextTest, ShortestDoubleIsShortAndReadsBack) {
   }
 }
 
+TEST(TextTest, ExcerptEscapesAndCuts) {
+  EXPECT_EQ(Excerpt("abc"), "abc");
+  EXPECT_EQ(Excerpt("a\"b\\c\n\t\r\x01\xff"), "a\\\"b\\\\c\\n\\t\\r\\x01\\xff");
+  const std::string big(1000, 'x');
+  EXPECT_EQ(Excerpt(big, 4), "xxxx... (1000 bytes)");
+  EXPECT_EQ(Excerpt("abcd", 4), "abcd");
+}
+
+TEST(TextTest, ForeignTextKeepsQuotesAndCuts) {
+  EXPECT_EQ(ForeignText("Expected \"}\".\n\x07"), "Expected \"}\".\\n\\x07");
+  std::string big = "error: " + std::string(10000, '\0');
+  const std::string out = ForeignText(big, 20);
+  EXPECT_EQ(out,
+            "error: \\x00\\x00\\x00\\x00\\x00\\x00\\x00\\x00\\x00\\x00\\x00"
+            "\\x00\\x00...");
+}
+
 }  // namespace
 }  // namespace animat

@@ -25,6 +25,53 @@ std::string Temp(const std::string& name) {
   return ::testing::TempDir() + "/animat-input-" + name;
 }
 
+// No byte outside printable ASCII but the line ends.
+bool Printable(const std::string& text) {
+  for (char c : text) {
+    const unsigned char u = static_cast<unsigned char>(c);
+    if (u != '\n' && (u < 0x20 || u >= 0x7f)) return false;
+  }
+  return true;
+}
+
+TEST(CliInputTest, AJunkFileIsQuotedShortAndEscaped) {
+  // 4 MB of junk: any bytes, and one printable line (not as binary:
+  // "xxx..." is a valid message of unknown fields).
+  std::string bytes(4 << 20, '\0');
+  uint32_t state = 1;
+  for (char& c : bytes) {
+    state = state * 1664525u + 1013904223u;
+    c = static_cast<char>(state >> 24);
+  }
+  const std::string line(4 << 20, 'x');
+  const std::string genome = testing::TestData("genomes/example.json");
+  int case_number = 0;
+  for (const std::string& junk : {bytes, line}) {
+    for (const std::string extension : {".json", ".txtpb", ".binpb"}) {
+      if (junk == line && extension == ".binpb") continue;
+      const std::string path =
+          Temp("junk" + std::to_string(case_number++) + extension);
+      ASSERT_TRUE(WriteFile(path, junk).ok());
+      for (const std::string& command : {
+               "simulate --genome " + path,
+               "simulate --genome " + genome + " --config " + path,
+               "evolve --db " + Temp("junk.db") + " --config " + path,
+               "analyze --trace " + path,
+               "render -o " + Temp("x.html") + " --trace " + path,
+           }) {
+        SCOPED_TRACE("animat " + command);
+        const Outcome run = Animat(command);
+        EXPECT_EQ(run.exit_code, 1) << run.output.substr(0, 1000);
+        EXPECT_EQ(run.output.rfind("animat: " + path, 0), 0u)
+            << run.output.substr(0, 1000);
+        EXPECT_LT(run.output.size(), path.size() + 400)
+            << run.output.substr(0, 1000);
+        EXPECT_TRUE(Printable(run.output)) << run.output.substr(0, 1000);
+      }
+    }
+  }
+}
+
 TEST(CliInputTest, NumbersInMessagesAreShortest) {
   const std::string config = Temp("dt.txtpb");
   ASSERT_TRUE(WriteFile(config, "physics { dt: -0.7 }\n").ok());
