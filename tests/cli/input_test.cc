@@ -34,6 +34,27 @@ bool Printable(const std::string& text) {
   return true;
 }
 
+TEST(CliInputTest, AGenomeFileWithoutElementsIsRefused) {
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {"empty.txtpb", ""},   {"empty.binpb", ""},
+      {"braces.json", "{}"}, {"none.json", "{\"elements\": []}"},
+      {"empty.json", ""},
+  };
+  for (const auto& [name, contents] : files) {
+    SCOPED_TRACE(name);
+    const std::string path = Temp(name);
+    ASSERT_TRUE(WriteFile(path, contents).ok());
+    for (const std::string& command :
+         {"simulate --genome " + path,
+          "grn --steps 1 --inputs 0,0,0,1 --genome " + path,
+          "render -o " + Temp("x.html") + " --genome " + path}) {
+      const Outcome run = Animat(command);
+      EXPECT_EQ(run.exit_code, 1) << command << "\n" << run.output;
+      EXPECT_EQ(run.output.rfind("animat: " + path + ":", 0), 0u) << run.output;
+    }
+  }
+}
+
 TEST(CliInputTest, AJunkFileIsQuotedShortAndEscaped) {
   // 4 MB of junk: any bytes, and one printable line (not as binary:
   // "xxx..." is a valid message of unknown fields).
