@@ -155,7 +155,8 @@ Command AddLineageCommand(CLI::App& app) {
   lineage->require_subcommand(1);
   auto common = [&](CLI::App* sub) {
     sub->add_option("--db", o->db, "The lineage store")->required();
-    sub->add_option("--run", o->run, "Which run (default: the latest)");
+    sub->add_option("--run", o->run, "Which run (default: the latest)")
+        ->check(IdValidator(kMaxRunId));
   };
   CLI::App* best = lineage->add_subcommand(
       "best", "The individual with the highest fitness");
@@ -163,11 +164,15 @@ Command AddLineageCommand(CLI::App& app) {
   CLI::App* ancestors = lineage->add_subcommand(
       "ancestors", "Every ancestor of an individual, nearest first (CSV)");
   common(ancestors);
-  ancestors->add_option("id", o->id, "The individual")->required();
+  ancestors->add_option("id", o->id, "The individual")
+      ->required()
+      ->check(IdValidator());
   CLI::App* genome = lineage->add_subcommand(
       "genome", "Write an individual's genome (for animat simulate)");
   common(genome);
-  genome->add_option("id", o->id, "The individual")->required();
+  genome->add_option("id", o->id, "The individual")
+      ->required()
+      ->check(IdValidator());
   genome
       ->add_option("-o,--output", o->output,
                    "Output file: .json, .txtpb or .binpb; - for JSON")

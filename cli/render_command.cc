@@ -161,9 +161,11 @@ Command AddRenderCommand(CLI::App& app) {
   source->require_option(1);
   CLI::Option* individual = sub->add_option("--individual", o->individual,
                                             "The individual of --db to show")
+                                ->check(IdValidator())
                                 ->needs(db);
   db->needs(individual);
   sub->add_option("--run", o->run, "The run of --db (default: the latest)")
+      ->check(IdValidator(kMaxRunId))
       ->needs(db);
   sub->add_option("--config", o->config,
                   "Configuration file (default: docs/model.md's, or the run's "

@@ -34,6 +34,46 @@ bool Printable(const std::string& text) {
   return true;
 }
 
+TEST(CliInputTest, IdsAreWholeNumbers) {
+  // Refused while the command line is read: the store need not exist.
+  const std::string db = "--db " + Temp("none.db");
+  const std::vector<std::string> commands = {
+      "lineage genome ID " + db + " -o -",
+      "lineage ancestors ID " + db,
+      "lineage best " + db + " --run ID",
+      "lineage genome 1 " + db + " --run ID -o -",
+      "lineage ancestors 1 " + db + " --run ID",
+      "lineage export " + db + " --run ID",
+      "analyze " + db + " --individual ID",
+      "analyze " + db + " --individual 1 --run ID",
+      "figure strip " + db + " --individual ID -o x.svg",
+      "figure strip " + db + " --individual 1 --run ID -o x.svg",
+      "figure fitness " + db + " --run ID -o x.svg",
+      "figure contact-sheet " + db + " --run ID -o x.svg",
+      "render " + db + " --individual ID -o x.html",
+      "render " + db + " --individual 1 --run ID -o x.html",
+      "random-genome --seed 1 --individual ID -o x.json",
+  };
+  for (const std::string& command : commands) {
+    for (const std::string id :
+         {"-3", "abc", "1.5", "''", "+1", "0x10", "99999999999999999999999"}) {
+      std::string line = command;
+      line.replace(line.find("ID"), 2, id);
+      SCOPED_TRACE("animat " + line);
+      const Outcome run = Animat(line);
+      EXPECT_EQ(run.exit_code, 2) << run.output;
+      EXPECT_NE(run.output.find("expected an id"), std::string::npos)
+          << run.output;
+      EXPECT_EQ(run.output.find("18446744073709551613"), std::string::npos)
+          << run.output;
+    }
+  }
+  const Outcome run = Animat("random-genome --seed -1 -o " + Temp("r.json"));
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_NE(run.output.find("--seed: expected a seed"), std::string::npos)
+      << run.output;
+}
+
 TEST(CliInputTest, AGenomeFileWithoutElementsIsRefused) {
   const std::vector<std::pair<std::string, std::string>> files = {
       {"empty.txtpb", ""},   {"empty.binpb", ""},
