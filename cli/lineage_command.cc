@@ -75,13 +75,15 @@ int Ancestors(const Options& o) {
     Result<std::vector<lineage::Summary>> ancestors =
         lineage::Ancestors(store, run, o.id);
     if (!ancestors.ok()) return Fail(ancestors.status().message());
-    std::printf("distance,id,generation,fitness,status,operators\n");
+    std::string csv = "distance,id,generation,fitness,status,operators\n";
     for (const lineage::Summary& a : *ancestors) {
-      std::printf("%d,%llu,%d,%s,%s,\"%s\"\n", a.distance,
-                  static_cast<unsigned long long>(a.id), a.generation,
-                  a.fitness ? FitnessText(a.fitness).c_str() : "",
-                  a.status.c_str(), a.operators.c_str());
+      csv += std::to_string(a.distance) + "," + std::to_string(a.id) + "," +
+             std::to_string(a.generation) + "," +
+             (a.fitness ? FitnessText(a.fitness) : "") + "," + a.status +
+             ",\"" + a.operators + "\"\n";
     }
+    Status status = WriteFile(o.output, csv);
+    if (!status.ok()) return Fail(status.message());
     return 0;
   });
 }
@@ -167,6 +169,10 @@ Command AddLineageCommand(CLI::App& app) {
   ancestors->add_option("id", o->id, "The individual")
       ->required()
       ->check(IdValidator());
+  ancestors
+      ->add_option("-o,--output", o->output,
+                   "Output file; - for standard output")
+      ->capture_default_str();
   CLI::App* genome = lineage->add_subcommand(
       "genome", "Write an individual's genome (for animat simulate)");
   common(genome);

@@ -261,6 +261,17 @@ TEST_F(EvolveCliTest, LineageAnswersAsTheStoreSays) {
       EXPECT_EQ(f[4], row[2]);
       EXPECT_EQ(f[5], row[3]);
     }
+    // -o writes the same to a file.
+    const std::string csv = Path("ancestors-" + id + ".csv");
+    std::string file_out;
+    ASSERT_EQ(Animat({"lineage", "ancestors", id, "--db", db_, "-o", csv},
+                     &file_out, &err),
+              0)
+        << err;
+    EXPECT_EQ(file_out, "");
+    Result<std::string> written = ReadFile(csv);
+    ASSERT_TRUE(written.ok()) << written.status().ToString();
+    EXPECT_EQ(*written, out);
   }
   EXPECT_TRUE(parents_of.count(youngest) > 0)
       << "the youngest individual, " << youngest << ", has no parents";
