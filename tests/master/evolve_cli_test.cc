@@ -171,6 +171,33 @@ TEST_F(EvolveCliTest, EvolveReportsEachGenerationAndExtendsAFinishedRun) {
   ExpectSameContents(ReadStoreContents(reference_db), ReadStoreContents(db_));
 }
 
+TEST_F(EvolveCliTest, FewerGenerationsThanTheRunHasSaySoAndChangeNothing) {
+  TestRun run;
+  run.seed = 22;
+  config_ = WriteConfig("run.txtpb", run);
+  db_ = Path("fewer.db");
+  Evolve(2);
+  if (HasFatalFailure()) return;
+  const StoreContents before = ReadStoreContents(db_);
+
+  std::string out, err;
+  EXPECT_EQ(
+      Animat({"evolve", "--db", db_, "--workers", "1", "--generations", "1"},
+             &out, &err),
+      1);
+  EXPECT_NE(err.find(db_ +
+                     " holds run 1 (finished) with 2 generations; "
+                     "--generations 1 counts them all, so there is "
+                     "nothing to run. To extend it, ask for more than "
+                     "2: animat evolve --db " +
+                     db_ + " --generations 12"),
+            std::string::npos)
+      << err;
+  EXPECT_EQ(out, "");
+  // The run's configuration still says 2 generations.
+  ExpectSameContents(before, ReadStoreContents(db_));
+}
+
 TEST_F(EvolveCliTest, LineageAnswersAsTheStoreSays) {
   TestRun run;
   run.seed = 6;
