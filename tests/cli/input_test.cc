@@ -145,5 +145,31 @@ TEST(CliInputTest, NumbersInMessagesAreShortest) {
       << run.output;
 }
 
+TEST(CliInputTest, EveryToolTellsItsVersion) {
+  const std::string expected =
+      "build: " + protocol::BuildId() +
+      "\nprotocol: " + std::to_string(protocol::kVersion) +
+      "\nmodel: " + std::to_string(protocol::kModelVersion) + "\n";
+  EXPECT_EQ(Animat("--version").output, expected);
+  EXPECT_EQ(Animat("--version").exit_code, 0);
+  for (const std::string tool : {"animat-master", "animat-worker"}) {
+    SCOPED_TRACE(tool);
+    // --version needs none of the required options.
+    FILE* pipe = popen(
+        (std::string(ANIMAT_BIN_DIR) + "/" + tool + " --version 2>&1").c_str(),
+        "r");
+    ASSERT_NE(pipe, nullptr);
+    std::string output;
+    char buffer[4096];
+    size_t n;
+    while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0) {
+      output.append(buffer, n);
+    }
+    const int status = pclose(pipe);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << output;
+    EXPECT_EQ(output, expected);
+  }
+}
+
 }  // namespace
 }  // namespace animat
