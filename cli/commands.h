@@ -24,6 +24,7 @@ Command AddAnalyzeCommand(CLI::App& app);
 Command AddFigureCommand(CLI::App& app);
 Command AddKeygenCommand(CLI::App& app);
 Command AddRenderCommand(CLI::App& app);
+Command AddConfigCommand(CLI::App& app);
 
 // Prints "animat: <message>" to stderr and returns 1.
 int Fail(const std::string& message);

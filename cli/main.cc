@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   commands["figure"] = animat::cli::AddFigureCommand(app);
   commands["keygen"] = animat::cli::AddKeygenCommand(app);
   commands["render"] = animat::cli::AddRenderCommand(app);
+  commands["config"] = animat::cli::AddConfigCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

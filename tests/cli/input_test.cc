@@ -171,5 +171,30 @@ TEST(CliInputTest, EveryToolTellsItsVersion) {
   }
 }
 
+TEST(CliInputTest, ConfigDefaultsReadBack) {
+  const std::string model = Temp("defaults.txtpb");
+  Outcome run = Animat("config defaults > " + model);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  Result<ModelConfig> config = ReadConfigFile(model);
+  ASSERT_TRUE(config.ok()) << config.status().ToString();
+  EXPECT_EQ(ConfigToProto(*config).SerializeAsString(),
+            ConfigToProto(ModelConfig{}).SerializeAsString());
+  // Given as --config, the same as none.
+  const std::string genome = testing::TestData("genomes/seed-1198.json");
+  const Outcome with =
+      Animat("simulate --genome " + genome + " --config " + model);
+  const Outcome without = Animat("simulate --genome " + genome);
+  EXPECT_EQ(with.exit_code, 0) << with.output;
+  EXPECT_EQ(with.output, without.output);
+
+  const std::string run_config = Temp("run-defaults.txtpb");
+  run = Animat("config defaults --run > " + run_config);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  Result<RunSettings> settings = ReadRunConfigFile(run_config);
+  ASSERT_TRUE(settings.ok()) << settings.status().ToString();
+  EXPECT_EQ(RunSettingsToProto(*settings).SerializeAsString(),
+            RunSettingsToProto(RunSettings{}).SerializeAsString());
+}
+
 }  // namespace
 }  // namespace animat
