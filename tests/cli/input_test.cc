@@ -196,5 +196,38 @@ TEST(CliInputTest, ConfigDefaultsReadBack) {
             RunSettingsToProto(RunSettings{}).SerializeAsString());
 }
 
+TEST(CliInputTest, AConfigOfTheOtherKindIsNamed) {
+  const std::string model = Temp("model.txtpb");
+  ASSERT_TRUE(WriteFile(model, "physics { dt: 0.01 }\n").ok());
+  const std::string run_config = Temp("run.json");
+  ASSERT_TRUE(WriteFile(run_config, R"({"model": {"physics": {"dt": 0.01}},)"
+                                    R"( "evolution": {"population": 10}})")
+                  .ok());
+  Outcome run =
+      Animat("simulate --genome " + testing::TestData("genomes/example.json") +
+             " --config " + run_config);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.output.find(run_config +
+                            ": a run configuration (animat.v1.RunConfig), "
+                            "where a model configuration (animat.v1.Config) "
+                            "is wanted: give what its model { } block holds "
+                            "(animat config defaults prints one)"),
+            std::string::npos)
+      << run.output;
+
+  const std::string db = Temp("kind.db");
+  run = Animat("evolve --db " + db + " --config " + model);
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(
+      run.output.find(model + ": a model configuration (animat.v1.Config), "
+                              "where a run configuration (animat.v1.RunConfig) "
+                              "is wanted: put it in a model { } block beside "
+                              "an evolution { } block (animat config defaults "
+                              "--run prints one)"),
+      std::string::npos)
+      << run.output;
+  EXPECT_FALSE(ReadFile(db).ok());
+}
+
 }  // namespace
 }  // namespace animat
