@@ -2,6 +2,7 @@
 
 #include <memory>
 
+#include "cli/commands.h"
 #include "cli/load.h"
 #include "common/evaluation/evaluator.h"
 #include "common/evaluation/trace_recorder.h"
@@ -32,8 +33,10 @@ void AddAnimatSourceOptions(CLI::App* sub, AnimatSource* source) {
                   "Configuration file (default: docs/model.md's for --genome, "
                   "the run's for --db)");
   sub->add_option("--db", source->db, "Lineage store holding --individual");
-  sub->add_option("--individual", source->individual, "Individual id in --db");
-  sub->add_option("--run", source->run, "Run in --db (default: the latest)");
+  sub->add_option("--individual", source->individual, "Individual id in --db")
+      ->check(IdValidator());
+  sub->add_option("--run", source->run, "Run in --db (default: the latest)")
+      ->check(IdValidator(kMaxRunId));
   sub->add_option("--trace", source->trace,
                   "A trace written by animat simulate --trace");
   sub->add_option("--every", source->every,

@@ -4,7 +4,9 @@
 #ifndef ANIMAT_CLI_COMMANDS_H_
 #define ANIMAT_CLI_COMMANDS_H_
 
+#include <cstdint>
 #include <functional>
+#include <limits>
 
 #include <CLI/CLI.hpp>
 
@@ -22,9 +24,19 @@ Command AddAnalyzeCommand(CLI::App& app);
 Command AddFigureCommand(CLI::App& app);
 Command AddKeygenCommand(CLI::App& app);
 Command AddRenderCommand(CLI::App& app);
+Command AddConfigCommand(CLI::App& app);
 
 // Prints "animat: <message>" to stderr and returns 1.
 int Fail(const std::string& message);
+
+// Accepts only a whole number from 0 to `max` in decimal digits (no sign,
+// no fraction), so that "-3" is refused rather than read as 2^64 - 3; the
+// message calls it `noun`. For ids of individuals; runs take
+// IdValidator(kMaxRunId).
+CLI::Validator IdValidator(uint64_t max = std::numeric_limits<uint64_t>::max(),
+                           const std::string& noun = "an id");
+inline constexpr uint64_t kMaxRunId =
+    static_cast<uint64_t>(std::numeric_limits<int64_t>::max());
 
 }  // namespace animat::cli
 

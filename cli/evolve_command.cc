@@ -117,6 +117,25 @@ int Run(const Options& o) {
   if (!store.ok()) return Fail(store.status().message());
   Result<std::vector<lineage::RunRow>> runs = (*store)->Runs();
   if (!runs.ok()) return Fail(runs.status().message());
+  // --generations counts them all: fewer than the run has made runs
+  // nothing (and must not rewrite the run's configuration).
+  if (!runs->empty() && o.generations) {
+    const lineage::RunRow& last = runs->back();
+    Result<std::optional<lineage::GenerationRow>> latest =
+        (*store)->LatestGenerationHead(last.run_id);
+    if (!latest.ok()) return Fail(latest.status().message());
+    const int made = *latest ? (*latest)->generation + 1 : 0;
+    if (*o.generations < made) {
+      return Fail(o.db + " holds run " + std::to_string(last.run_id) + " (" +
+                  last.state + ") with " + std::to_string(made) +
+                  " generations; --generations " +
+                  std::to_string(*o.generations) +
+                  " counts them all, so there is nothing to run. To extend "
+                  "it, ask for more than " +
+                  std::to_string(made) + ": animat evolve --db " + o.db +
+                  " --generations " + std::to_string(made + 10));
+    }
+  }
   const LogSink log = Prefixed("evolve", StderrSink);
   Result<std::unique_ptr<EvolutionRun>> run =
       runs->empty()

@@ -317,13 +317,16 @@ Command AddFigureCommand(CLI::App& app) {
       ->add_option("--db", o->dbs,
                    "Lineage store (repeat for several runs on one chart)")
       ->required();
-  fitness->add_option("--run", o->source.run,
-                      "Run in each store (default: the latest)");
+  fitness
+      ->add_option("--run", o->source.run,
+                   "Run in each store (default: the latest)")
+      ->check(IdValidator(kMaxRunId));
   output(fitness);
   CLI::App* sheet = figure->add_subcommand(
       "contact-sheet", "The best individual every N generations");
   sheet->add_option("--db", o->dbs, "Lineage store")->required();
-  sheet->add_option("--run", o->source.run, "Run (default: the latest)");
+  sheet->add_option("--run", o->source.run, "Run (default: the latest)")
+      ->check(IdValidator(kMaxRunId));
   sheet->add_option("--every", o->every, "Every N generations (and the last)")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();

@@ -7,6 +7,7 @@
 
 #include "cli/commands.h"
 #include "cli/load.h"
+#include "common/base/text.h"
 #include "common/grn/grn_batch.h"
 #include "common/grn/network.h"
 
@@ -55,14 +56,12 @@ int Run(const Options& o) {
   std::string out = "step";
   for (const Node& node : network.nodes()) out += "," + NodeName(node);
   out += "\n";
-  char buffer[32];
   for (int step = 1; step <= o.steps; ++step) {
     grn.SetOwnSignals();
     grn.Step();
     out += std::to_string(step);
     for (int v = 0; v < network.node_count(); ++v) {
-      std::snprintf(buffer, sizeof(buffer), ",%.17g", grn.level(0, v));
-      out += buffer;
+      out += "," + ShortestDouble(grn.level(0, v));
     }
     out += "\n";
     if (out.size() > (1 << 16)) {

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "cli/commands.h"
+#include "common/base/text.h"
 #include "common/io/proto_file.h"
 #include "master/lineage/queries.h"
 #include "master/lineage/schema.h"
@@ -33,9 +34,7 @@ struct Options {
 
 std::string FitnessText(const std::optional<double>& fitness) {
   if (!fitness) return "-";
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.17g", *fitness);
-  return text;
+  return ShortestDouble(*fitness);
 }
 
 // The body's lines, as `animat simulate` prints them (none for a store
@@ -43,9 +42,10 @@ std::string FitnessText(const std::optional<double>& fitness) {
 void PrintBody(const v1::BodySummary& body) {
   std::printf(
       "cells: %d\nsprings: %d\nchambers: %d\nskin_edges: %d\n"
-      "spread_major: %.17g\nspread_minor: %.17g\n",
+      "spread_major: %s\nspread_minor: %s\n",
       body.cells(), body.springs(), body.chambers(), body.skin_edges(),
-      body.spread_major(), body.spread_minor());
+      ShortestDouble(body.spread_major()).c_str(),
+      ShortestDouble(body.spread_minor()).c_str());
 }
 
 template <typename Body>
@@ -75,13 +75,15 @@ int Ancestors(const Options& o) {
     Result<std::vector<lineage::Summary>> ancestors =
         lineage::Ancestors(store, run, o.id);
     if (!ancestors.ok()) return Fail(ancestors.status().message());
-    std::printf("distance,id,generation,fitness,status,operators\n");
+    std::string csv = "distance,id,generation,fitness,status,operators\n";
     for (const lineage::Summary& a : *ancestors) {
-      std::printf("%d,%llu,%d,%s,%s,\"%s\"\n", a.distance,
-                  static_cast<unsigned long long>(a.id), a.generation,
-                  a.fitness ? FitnessText(a.fitness).c_str() : "",
-                  a.status.c_str(), a.operators.c_str());
+      csv += std::to_string(a.distance) + "," + std::to_string(a.id) + "," +
+             std::to_string(a.generation) + "," +
+             (a.fitness ? FitnessText(a.fitness) : "") + "," + a.status +
+             ",\"" + a.operators + "\"\n";
     }
+    Status status = WriteFile(o.output, csv);
+    if (!status.ok()) return Fail(status.message());
     return 0;
   });
 }
@@ -155,7 +157,8 @@ Command AddLineageCommand(CLI::App& app) {
   lineage->require_subcommand(1);
   auto common = [&](CLI::App* sub) {
     sub->add_option("--db", o->db, "The lineage store")->required();
-    sub->add_option("--run", o->run, "Which run (default: the latest)");
+    sub->add_option("--run", o->run, "Which run (default: the latest)")
+        ->check(IdValidator(kMaxRunId));
   };
   CLI::App* best = lineage->add_subcommand(
       "best", "The individual with the highest fitness");
@@ -163,11 +166,19 @@ Command AddLineageCommand(CLI::App& app) {
   CLI::App* ancestors = lineage->add_subcommand(
       "ancestors", "Every ancestor of an individual, nearest first (CSV)");
   common(ancestors);
-  ancestors->add_option("id", o->id, "The individual")->required();
+  ancestors->add_option("id", o->id, "The individual")
+      ->required()
+      ->check(IdValidator());
+  ancestors
+      ->add_option("-o,--output", o->output,
+                   "Output file; - for standard output")
+      ->capture_default_str();
   CLI::App* genome = lineage->add_subcommand(
       "genome", "Write an individual's genome (for animat simulate)");
   common(genome);
-  genome->add_option("id", o->id, "The individual")->required();
+  genome->add_option("id", o->id, "The individual")
+      ->required()
+      ->check(IdValidator());
   genome
       ->add_option("-o,--output", o->output,
                    "Output file: .json, .txtpb or .binpb; - for JSON")

@@ -10,7 +10,8 @@
 
 namespace animat::cli {
 
-// Reads and validates a genome file; errors name the file and field.
+// Reads and validates a genome file; errors name the file and field. A
+// file without elements (empty, or "{}") is refused.
 Result<Genome> LoadGenome(const std::string& path);
 // The defaults when `path` is empty, else the file over the defaults.
 Result<ModelConfig> LoadConfig(const std::string& path);

@@ -4,12 +4,15 @@
 #include <string>
 
 #include "cli/commands.h"
+#include "common/protocol/protocol.h"
 
 int main(int argc, char** argv) {
   CLI::App app{
       "animat: evolve soft-bodied, brainless animats (see README.md and "
       "docs/formats.md)"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", animat::protocol::VersionText(),
+                       "Print the build id, protocol and model versions");
   std::map<std::string, animat::cli::Command> commands;
   commands["random-genome"] = animat::cli::AddRandomGenomeCommand(app);
   commands["grn"] = animat::cli::AddGrnCommand(app);
@@ -21,6 +24,7 @@ int main(int argc, char** argv) {
   commands["figure"] = animat::cli::AddFigureCommand(app);
   commands["keygen"] = animat::cli::AddKeygenCommand(app);
   commands["render"] = animat::cli::AddRenderCommand(app);
+  commands["config"] = animat::cli::AddConfigCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

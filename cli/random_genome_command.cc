@@ -36,9 +36,12 @@ Command AddRandomGenomeCommand(CLI::App& app) {
       "Write a random genome (docs/model.md §9.3): UNITS regulatory units of "
       "one P and one G element, never split by an S element, plus one S "
       "element per input and output channel");
-  sub->add_option("--seed", options->seed, "Run seed")->required();
+  sub->add_option("--seed", options->seed, "Run seed")
+      ->required()
+      ->check(IdValidator(std::numeric_limits<uint64_t>::max(), "a seed"));
   sub->add_option("--individual", options->individual,
                   "Individual number: one seed gives a stream of genomes")
+      ->check(IdValidator())
       ->capture_default_str();
   sub->add_option("--units", options->units, "Regulatory units")
       ->check(CLI::Range(0, 4000))

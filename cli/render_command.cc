@@ -13,6 +13,7 @@
 
 #include "cli/commands.h"
 #include "cli/load.h"
+#include "common/base/text.h"
 #include "common/evaluation/evaluator.h"
 #include "common/evaluation/trace_recorder.h"
 #include "common/genome/genome_proto.h"
@@ -91,9 +92,10 @@ Result<v1::Trace> FromStore(const Options& o, std::string* title) {
   if (row->fitness && trace.result().has_fitness() &&
       *row->fitness != trace.result().fitness()) {
     std::fprintf(stderr,
-                 "animat: note: the store's fitness of %s is %.17g, this "
-                 "build gives %.17g\n",
-                 name.c_str(), *row->fitness, trace.result().fitness());
+                 "animat: note: the store's fitness of %s is %s, this "
+                 "build gives %s\n",
+                 name.c_str(), ShortestDouble(*row->fitness).c_str(),
+                 ShortestDouble(trace.result().fitness()).c_str());
   }
   *title = name + " (generation " + std::to_string(row->generation) + ") of " +
            FileName(o.db);
@@ -159,9 +161,11 @@ Command AddRenderCommand(CLI::App& app) {
   source->require_option(1);
   CLI::Option* individual = sub->add_option("--individual", o->individual,
                                             "The individual of --db to show")
+                                ->check(IdValidator())
                                 ->needs(db);
   db->needs(individual);
   sub->add_option("--run", o->run, "The run of --db (default: the latest)")
+      ->check(IdValidator(kMaxRunId))
       ->needs(db);
   sub->add_option("--config", o->config,
                   "Configuration file (default: docs/model.md's, or the run's "

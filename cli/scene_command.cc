@@ -7,6 +7,7 @@
 #include "animat/v1/trace.pb.h"
 #include "cli/commands.h"
 #include "common/base/hash.h"
+#include "common/base/text.h"
 #include "common/evaluation/model_config.h"
 #include "common/evaluation/trace_recorder.h"
 #include "common/io/proto_file.h"
@@ -96,10 +97,12 @@ int Run(const Options& o) {
   std::printf("status: %s\n", problem.empty() ? "ok" : "numerical_failure");
   if (!problem.empty()) std::printf("reason: %s\n", problem.c_str());
   std::printf("steps: %d\n", done);
-  std::printf("centre_of_mass: %.17g %.17g\n", com.x, com.y);
-  std::printf("displacement: %.17g\n", Length(com - start));
-  std::printf("kinetic_energy: %.17g\n",
-              KineticEnergy(state, scene->params.mass));
+  std::printf("centre_of_mass: %s %s\n", ShortestDouble(com.x).c_str(),
+              ShortestDouble(com.y).c_str());
+  std::printf("displacement: %s\n",
+              ShortestDouble(Length(com - start)).c_str());
+  std::printf("kinetic_energy: %s\n",
+              ShortestDouble(KineticEnergy(state, scene->params.mass)).c_str());
   std::printf("state_hash: %016" PRIx64 "\n", hash.value());
   return 0;
 }

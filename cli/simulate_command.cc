@@ -6,6 +6,7 @@
 
 #include "cli/commands.h"
 #include "cli/load.h"
+#include "common/base/text.h"
 #include "common/evaluation/evaluator.h"
 #include "common/evaluation/trace_recorder.h"
 #include "common/genome/genome_proto.h"
@@ -31,12 +32,8 @@ struct Field {
   bool text = false;
 };
 
-// 17 significant digits: reads back to the same double.
-std::string Exact(double value) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.17g", value);
-  return text;
-}
+// The shortest form that reads back to the same double.
+std::string Exact(double value) { return ShortestDouble(value); }
 
 // The result's fields in the order printed, named and written as the
 // lineage store's columns are (docs/lineage.md, `evaluations`): the status

@@ -73,6 +73,8 @@ int main(int argc, char** argv) {
   app.add_option("--heartbeat-ms", heartbeat_ms, "Heartbeat interval")
       ->check(CLI::Range(10, 600000))
       ->capture_default_str();
+  app.set_version_flag("--version", animat::protocol::VersionText(),
+                       "Print the build id, protocol and model versions");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

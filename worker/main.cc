@@ -52,6 +52,8 @@ int main(int argc, char** argv) {
       "the master's allow-list");
   server->needs(secret);
   secret->needs(server);
+  app.set_version_flag("--version", animat::protocol::VersionText(),
+                       "Print the build id, protocol and model versions");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,17 +1,14 @@
 #include "common/base/validate.h"
 
 #include <cmath>
-#include <cstdio>
 #include <string>
+
+#include "common/base/text.h"
 
 namespace animat {
 namespace {
 
-std::string Format(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.17g", value);
-  return buffer;
-}
+std::string Format(double value) { return ShortestDouble(value); }
 
 Status Fail(std::string_view field, const std::string& rule,
             const std::string& got) {

@@ -1,5 +1,6 @@
 #include "common/evaluation/model_config.h"
 
+#include "animat/v1/evolution.pb.h"
 #include "common/base/validate.h"
 #include "common/io/proto_file.h"
 
@@ -71,7 +72,18 @@ v1::Config ConfigToProto(const ModelConfig& c) {
 Result<ModelConfig> ReadConfigFile(const std::string& path) {
   v1::Config message;
   Status status = ReadProtoFile(path, &message);
-  if (!status.ok()) return status;
+  if (!status.ok()) {
+    // Its fields are not a model configuration's; a run configuration's?
+    v1::RunConfig run;
+    if (ReadProtoFile(path, &run).ok()) {
+      return Status::InvalidArgument(
+          path +
+          ": a run configuration (animat.v1.RunConfig), where a model "
+          "configuration (animat.v1.Config) is wanted: give what its "
+          "model { } block holds (animat config defaults prints one)");
+    }
+    return status;
+  }
   ModelConfig config;
   status = ConfigFromProto(message, &config);
   if (!status.ok()) return status.WithPrefix(path);

@@ -1,9 +1,9 @@
 #include "common/geometry/plane_faces.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <string>
 
+#include "common/base/text.h"
 #include "common/geometry/polygon.h"
 
 namespace animat {
@@ -125,10 +125,9 @@ Result<PlaneFaces> FacesOfPlaneGraph(std::span<const Vec2> points,
   for (size_t f = 0; f < faces.size(); ++f) {
     if (f == outer) continue;
     if (!(areas[f] > 0.0)) {
-      char area[32];
-      std::snprintf(area, sizeof(area), "%.17g", areas[f]);
       return Status::InvalidArgument(
-          std::string("not a plane graph: a bounded face has area ") + area);
+          "not a plane graph: a bounded face has area " +
+          ShortestDouble(areas[f]));
     }
     result.bounded.push_back(std::move(faces[f]));
     result.bounded_area.push_back(areas[f]);

@@ -10,6 +10,8 @@
 #include <google/protobuf/text_format.h>
 #include <google/protobuf/util/json_util.h>
 
+#include "common/base/text.h"
+
 namespace animat {
 namespace {
 
@@ -32,6 +34,27 @@ class TextErrors : public google::protobuf::io::ErrorCollector {
  private:
   std::string text_;
 };
+
+// The JSON parser's "what\ncontext\n   ^" as one line, "what, at
+// \"text from the caret\"", escaped (the input may be any bytes).
+std::string JsonError(const std::string& message) {
+  const size_t first = message.find('\n');
+  const size_t second =
+      first == std::string::npos ? first : message.find('\n', first + 1);
+  if (second == std::string::npos) return ForeignText(message);
+  std::string what = message.substr(0, first);
+  if (!what.empty() && what.back() == '.') what.pop_back();
+  const std::string context = message.substr(first + 1, second - first - 1);
+  const std::string caret = message.substr(second + 1);
+  const size_t column = caret.find('^');
+  if (column == std::string::npos || caret.find_first_not_of(' ') != column ||
+      column > context.size()) {
+    return ForeignText(message);
+  }
+  if (column == context.size()) return ForeignText(what);
+  return ForeignText(what) + " at \"" + Excerpt(context.substr(column), 40) +
+         "\"";
+}
 
 }  // namespace
 
@@ -60,7 +83,8 @@ Status ParseProto(const std::string& text, ProtoFormat format,
       const auto status =
           google::protobuf::util::JsonStringToMessage(text, message, options);
       if (!status.ok()) {
-        return Status::InvalidArgument(std::string(status.message()));
+        return Status::InvalidArgument(
+            JsonError(std::string(status.message())));
       }
       return Status::Ok();
     }
@@ -69,8 +93,9 @@ Status ParseProto(const std::string& text, ProtoFormat format,
       TextErrors errors;
       parser.RecordErrorsTo(&errors);
       if (!parser.ParseFromString(text, message)) {
-        return Status::InvalidArgument(
-            errors.text().empty() ? "malformed text format" : errors.text());
+        return Status::InvalidArgument(errors.text().empty()
+                                           ? "malformed text format"
+                                           : ForeignText(errors.text()));
       }
       return Status::Ok();
     }

@@ -14,6 +14,11 @@ const std::string& BuildId() {
   return id;
 }
 
+std::string VersionText() {
+  return "build: " + BuildId() + "\nprotocol: " + std::to_string(kVersion) +
+         "\nmodel: " + std::to_string(kModelVersion);
+}
+
 std::string Encode(v1::Envelope envelope) {
   envelope.set_protocol_version(kVersion);
   return envelope.SerializeAsString();

@@ -23,6 +23,9 @@ namespace animat::protocol {
 // Bumped on any incompatible change of protocol.proto's meaning.
 inline constexpr uint32_t kVersion = 1;
 
+// The version of the model this build implements (docs/model.md §12).
+inline constexpr int kModelVersion = 2;
+
 // Default heartbeat interval; a peer silent for kLiveness intervals is
 // presumed dead.
 inline constexpr int kHeartbeatMs = 1000;
@@ -53,6 +56,10 @@ inline constexpr int kReconnectMaxMs = 5000;
 // target architecture. Workers of another build are refused: they may give
 // different bits.
 const std::string& BuildId();
+
+// What --version prints, one "name: value" line each (no final newline):
+// the build id, the protocol version and the model version.
+std::string VersionText();
 
 // Serialises an envelope stamped with kVersion.
 std::string Encode(v1::Envelope envelope);

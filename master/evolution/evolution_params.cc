@@ -148,7 +148,19 @@ v1::RunConfig RunSettingsToProto(const RunSettings& settings) {
 Result<RunSettings> ReadRunConfigFile(const std::string& path) {
   v1::RunConfig message;
   Status status = ReadProtoFile(path, &message);
-  if (!status.ok()) return status;
+  if (!status.ok()) {
+    // Its fields are not a run configuration's; a model configuration's?
+    v1::Config model;
+    if (ReadProtoFile(path, &model).ok()) {
+      return Status::InvalidArgument(
+          path +
+          ": a model configuration (animat.v1.Config), where a run "
+          "configuration (animat.v1.RunConfig) is wanted: put it in a "
+          "model { } block beside an evolution { } block (animat config "
+          "defaults --run prints one)");
+    }
+    return status;
+  }
   RunSettings settings;
   status = RunSettingsFromProto(message, &settings);
   if (!status.ok()) return status.WithPrefix(path);

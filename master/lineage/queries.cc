@@ -1,17 +1,8 @@
 #include "master/lineage/queries.h"
 
-#include <cstdio>
+#include "common/base/text.h"
 
 namespace animat::lineage {
-namespace {
-
-std::string FormatDouble(double value) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.17g", value);
-  return text;
-}
-
-}  // namespace
 
 Result<int64_t> ChooseRun(Store& store, std::optional<int64_t> run) {
   Result<std::vector<RunRow>> runs = store.Runs();
@@ -110,7 +101,8 @@ Status ExportAlife(Store& store, int64_t run, std::ostream& out) {
     out << select->Int(0) << ",\"["
         << (parents.empty() ? std::string("NONE") : parents) << "]\","
         << select->Int(1) << ","
-        << (select->IsNull(3) ? std::string() : FormatDouble(select->Double(3)))
+        << (select->IsNull(3) ? std::string()
+                              : ShortestDouble(select->Double(3)))
         << "," << (select->IsNull(2) ? std::string() : select->Text(2)) << ",\""
         << select->Text(4) << "\"\n";
   }

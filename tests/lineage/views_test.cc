@@ -334,7 +334,7 @@ TEST(ExportAlifeTest, WritesTheStandardPhylogenyCsv) {
   ASSERT_TRUE(status.ok()) << status.ToString();
   EXPECT_EQ(out.str(),
             "id,ancestor_list,origin_time,fitness,status,operators\n"
-            "0,\"[NONE]\",0,0.10000000000000001,ok,\"random\"\n"
+            "0,\"[NONE]\",0,0.1,ok,\"random\"\n"
             "1,\"[NONE]\",0,,non_viable,\"random\"\n"
             "3,\"[NONE]\",0,2,ok,\"random\"\n"
             "5,\"[NONE]\",0,1.25,ok,\"random\"\n"

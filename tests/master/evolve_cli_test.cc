@@ -171,6 +171,33 @@ TEST_F(EvolveCliTest, EvolveReportsEachGenerationAndExtendsAFinishedRun) {
   ExpectSameContents(ReadStoreContents(reference_db), ReadStoreContents(db_));
 }
 
+TEST_F(EvolveCliTest, FewerGenerationsThanTheRunHasSaySoAndChangeNothing) {
+  TestRun run;
+  run.seed = 22;
+  config_ = WriteConfig("run.txtpb", run);
+  db_ = Path("fewer.db");
+  Evolve(2);
+  if (HasFatalFailure()) return;
+  const StoreContents before = ReadStoreContents(db_);
+
+  std::string out, err;
+  EXPECT_EQ(
+      Animat({"evolve", "--db", db_, "--workers", "1", "--generations", "1"},
+             &out, &err),
+      1);
+  EXPECT_NE(err.find(db_ +
+                     " holds run 1 (finished) with 2 generations; "
+                     "--generations 1 counts them all, so there is "
+                     "nothing to run. To extend it, ask for more than "
+                     "2: animat evolve --db " +
+                     db_ + " --generations 12"),
+            std::string::npos)
+      << err;
+  EXPECT_EQ(out, "");
+  // The run's configuration still says 2 generations.
+  ExpectSameContents(before, ReadStoreContents(db_));
+}
+
 TEST_F(EvolveCliTest, LineageAnswersAsTheStoreSays) {
   TestRun run;
   run.seed = 6;
@@ -261,6 +288,17 @@ TEST_F(EvolveCliTest, LineageAnswersAsTheStoreSays) {
       EXPECT_EQ(f[4], row[2]);
       EXPECT_EQ(f[5], row[3]);
     }
+    // -o writes the same to a file.
+    const std::string csv = Path("ancestors-" + id + ".csv");
+    std::string file_out;
+    ASSERT_EQ(Animat({"lineage", "ancestors", id, "--db", db_, "-o", csv},
+                     &file_out, &err),
+              0)
+        << err;
+    EXPECT_EQ(file_out, "");
+    Result<std::string> written = ReadFile(csv);
+    ASSERT_TRUE(written.ok()) << written.status().ToString();
+    EXPECT_EQ(*written, out);
   }
   EXPECT_TRUE(parents_of.count(youngest) > 0)
       << "the youngest individual, " << youngest << ", has no parents";
