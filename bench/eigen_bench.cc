@@ -6,8 +6,8 @@
 //
 //   build/bin/animat-eigen-bench
 //
-// docs/benchmarks.md (issue 13) gives the results and why the hand-written
-// loops stay.
+// docs/benchmarks.md ("Development's pair list, and Eigen measured") gives
+// the results and why the hand-written loops stay.
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Core>
