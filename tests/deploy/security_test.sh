@@ -127,7 +127,9 @@ fi
 echo "security_test: the allowed worker was served, the run equals the" \
   "loopback run, and $(stat -c %s "$work/curve.capture") bytes on the wire" \
   "hold no plaintext"
+# Gone before the next relay takes its port.
 kill "$relay" 2>/dev/null || true
+wait "$relay" 2>/dev/null || true
 
 # 3. --insecure: warns, serves a worker without keys, plaintext on the wire.
 start_relay "$work/plain.capture"
