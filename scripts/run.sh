@@ -7,7 +7,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
-scripts/build.sh
+# Only the programs the main job runs (and the libraries they need), not the
+# tests and benchmarks: scripts/test.sh builds those into the same tree.
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+cmake --build build --target animat animat-worker animat-master
 mkdir -p out
 build/bin/animat evolve --config configs/quickstart.txtpb \
   --db out/evolution.db "$@"
