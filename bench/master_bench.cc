@@ -46,6 +46,7 @@
 #include "bench/timing.h"
 #include "bench/worker_processes.h"
 #include "master/dispatcher.h"
+#include "master/lineage/queries.h"
 #include "master/lineage/store.h"
 #include "master/run/evolution_run.h"
 
@@ -85,20 +86,6 @@ long long FileBytes(const std::string& path) {
   return bytes;
 }
 
-// The integers of the one row `sql` gives, with ?1 bound to `run`.
-Result<std::vector<int64_t>> Integers(sql::Database& db, const char* sql,
-                                      int64_t run, int columns) {
-  Result<sql::Statement> select = db.Prepare(sql);
-  if (!select.ok()) return select.status();
-  select->Bind(1, run);
-  Result<bool> row = select->Step();
-  if (!row.ok()) return row.status();
-  if (!*row) return Status::NotFound(std::string("no row from: ") + sql);
-  std::vector<int64_t> values;
-  for (int c = 0; c < columns; ++c) values.push_back(select->Int(c));
-  return values;
-}
-
 struct Counts {
   int64_t made = 0;      // Individuals in the store.
   int64_t recorded = 0;  // Of those, evaluated.
@@ -111,7 +98,8 @@ Result<Counts> Verify(const std::string& path, int64_t run,
   Result<std::unique_ptr<lineage::Store>> store =
       lineage::Store::OpenForQueries(path);
   if (!store.ok()) return store.status();
-  sql::Database& db = (*store)->database();
+  Result<lineage::RunCounts> n = lineage::CountRun(**store, run);
+  if (!n.ok()) return n.status();
   std::vector<std::string> problems;
   const auto expect = [&](const std::string& what, int64_t found,
                           int64_t wanted) {
@@ -121,85 +109,46 @@ Result<Counts> Verify(const std::string& path, int64_t run,
     }
   };
 
-  Result<std::vector<int64_t>> runs = Integers(
-      db,
-      "SELECT COUNT(*), SUM(state = 'finished') FROM runs WHERE run_id = ?1",
-      run, 2);
-  if (!runs.ok()) return runs.status();
-  expect("finished runs", (*runs)[1], 1);
+  expect("finished runs", n->finished ? 1 : 0, 1);
 
   // Every individual recorded: evaluated OK with a fitness, by a worker, at
   // a time, with its genome. Only initial candidates not chosen may still
   // have been on their way when the run ended (a resumed run would send
   // them again).
-  Result<std::vector<int64_t>> individuals =
-      Integers(db,
-               "SELECT COUNT(*), COUNT(status), SUM(status = 'ok'),"
-               " COUNT(fitness), SUM(worker <> ''), COUNT(evaluated_at),"
-               " SUM(length(genome) > 0 AND elements > 0), SUM(generation > 0),"
-               " SUM(status IS NULL AND (generation > 0 OR id IN"
-               " (SELECT id FROM members WHERE run_id = ?1)))"
-               " FROM individuals WHERE run_id = ?1",
-               run, 9);
-  if (!individuals.ok()) return individuals.status();
-  const int64_t made = (*individuals)[0];
-  const int64_t count = (*individuals)[1];
-  expect("individuals with status ok", (*individuals)[2], count);
-  expect("individuals with a fitness", (*individuals)[3], count);
-  expect("individuals with a worker", (*individuals)[4], count);
-  expect("individuals with an evaluation time", (*individuals)[5], count);
-  expect("individuals with a genome", (*individuals)[6], made);
-  const int64_t offspring = (*individuals)[7];
+  const int64_t made = n->individuals;
+  const int64_t count = n->evaluated;
+  expect("individuals with status ok", n->ok, count);
+  expect("individuals with a fitness", n->with_fitness, count);
+  expect("individuals with a worker", n->with_worker, count);
+  expect("individuals with an evaluation time", n->with_evaluation_time, count);
+  expect("individuals with a genome", n->with_genome, made);
   const int64_t per_generation = options.population - EvolutionParams{}.elite;
-  expect("offspring", offspring,
+  expect("offspring", n->offspring,
          static_cast<int64_t>(options.generations - 1) * per_generation);
-  expect("members or offspring not evaluated", (*individuals)[8], 0);
+  expect("members or offspring not evaluated", n->needed_unevaluated, 0);
 
   // Each fitness is the one its id gives: the result recorded is the
   // individual's own.
-  Result<sql::Statement> fitness = db.Prepare(
-      "SELECT id, fitness FROM individuals WHERE run_id = ?1 ORDER BY id");
-  if (!fitness.ok()) return fitness.status();
-  fitness->Bind(1, run);
+  Result<std::vector<lineage::Score>> scores = lineage::Scores(**store, run);
+  if (!scores.ok()) return scores.status();
   int64_t wrong = 0;
-  for (;;) {
-    Result<bool> row = fitness->Step();
-    if (!row.ok()) return row.status();
-    if (!*row) break;
-    const uint64_t id = static_cast<uint64_t>(fitness->Int(0));
-    wrong += !fitness->IsNull(1) &&
-             fitness->Double(1) != NullEvaluationFitness(options.seed, id);
+  for (const lineage::Score& score : *scores) {
+    wrong += score.fitness &&
+             *score.fitness != NullEvaluationFitness(options.seed, score.id);
   }
   expect("individuals with another fitness than their own", wrong, 0);
 
   // Every offspring has its parents.
-  Result<std::vector<int64_t>> orphans =
-      Integers(db,
-               "SELECT COUNT(*) FROM individuals i WHERE i.run_id = ?1"
-               " AND i.generation > 0 AND NOT EXISTS (SELECT 1 FROM parents p"
-               " WHERE p.run_id = i.run_id AND p.child = i.id)",
-               run, 1);
-  if (!orphans.ok()) return orphans.status();
-  expect("offspring without parents", (*orphans)[0], 0);
+  expect("offspring without parents", n->offspring_without_parents, 0);
 
   // Every generation complete, its members ranked.
-  Result<std::vector<int64_t>> generations = Integers(
-      db,
-      "SELECT COUNT(*), COUNT(completed_at), SUM(evaluated) FROM generations"
-      " WHERE run_id = ?1",
-      run, 3);
-  if (!generations.ok()) return generations.status();
   const int64_t members = static_cast<int64_t>(options.generations) *
                           static_cast<int64_t>(options.population);
-  expect("generations", (*generations)[0], options.generations);
-  expect("complete generations", (*generations)[1], options.generations);
-  expect("members evaluated OK", (*generations)[2], members);
-  Result<std::vector<int64_t>> ranked = Integers(
-      db, "SELECT COUNT(*), COUNT(rank) FROM members WHERE run_id = ?1", run,
-      2);
-  if (!ranked.ok()) return ranked.status();
-  expect("members", (*ranked)[0], members);
-  expect("ranked members", (*ranked)[1], members);
+  expect("generations", n->generations, options.generations);
+  expect("complete generations", n->complete_generations, options.generations);
+  expect("members evaluated OK", n->generations_evaluated, members);
+  expect("members", n->members, members);
+  expect("ranked members", n->ranked_members, members);
 
   if (!problems.empty()) {
     std::string message = path + ": the store does not hold the run:";

@@ -139,52 +139,23 @@ Result<StoreRun> OpenRun(const std::string& db, std::optional<int64_t> run) {
   return s;
 }
 
-// One completed generation's statistics.
-struct GenerationStatistics {
-  int generation = 0;
-  std::optional<uint64_t> best_id;
-  std::optional<double> best, mean, median;
-};
-
-Result<std::vector<GenerationStatistics>> ReadStatistics(StoreRun& s) {
-  Result<sql::Statement> select = s.store->database().Prepare(
-      "SELECT generation, best_id, best_fitness, mean_fitness,"
-      " median_fitness FROM generation_statistics"
-      " WHERE run_id = ? AND completed_at IS NOT NULL ORDER BY generation");
-  if (!select.ok()) return select.status();
-  select->Bind(1, s.run);
-  std::vector<GenerationStatistics> rows;
-  for (;;) {
-    Result<bool> row = select->Step();
-    if (!row.ok()) return row.status();
-    if (!*row) break;
-    GenerationStatistics g;
-    g.generation = static_cast<int>(select->Int(0));
-    if (!select->IsNull(1)) g.best_id = static_cast<uint64_t>(select->Int(1));
-    if (!select->IsNull(2)) g.best = select->Double(2);
-    if (!select->IsNull(3)) g.mean = select->Double(3);
-    if (!select->IsNull(4)) g.median = select->Double(4);
-    rows.push_back(g);
-  }
-  return rows;
-}
-
 int Fitness(const Options& o) {
   if (o.dbs.empty()) return Fail("figure fitness needs --db FILE");
   std::vector<figures::FitnessCurves> runs;
   for (const std::string& db : o.dbs) {
     Result<StoreRun> s = OpenRun(db, o.source.run);
     if (!s.ok()) return Fail(s.status().message());
-    Result<std::vector<GenerationStatistics>> rows = ReadStatistics(*s);
+    Result<std::vector<lineage::CompletedGeneration>> rows =
+        lineage::CompletedGenerations(*s->store, s->run);
     if (!rows.ok()) return Fail(rows.status().message());
     if (rows->empty()) return Fail(db + ": no completed generation yet");
     figures::FitnessCurves curves;
     curves.label = "seed " + std::to_string(s->row.seed);
-    for (const GenerationStatistics& g : *rows) {
+    for (const lineage::CompletedGeneration& g : *rows) {
       curves.generation.push_back(g.generation);
-      curves.best.push_back(g.best);
-      curves.mean.push_back(g.mean);
-      curves.median.push_back(g.median);
+      curves.best.push_back(g.stats.best);
+      curves.mean.push_back(g.stats.mean);
+      curves.median.push_back(g.stats.median);
     }
     runs.push_back(std::move(curves));
   }
@@ -234,14 +205,16 @@ int ContactSheet(const Options& o) {
   ModelConfig config;
   Status status = ConfigFromProto(s->row.config.model(), &config);
   if (!status.ok()) return Fail(status.WithPrefix(o.dbs[0]).message());
-  Result<std::vector<GenerationStatistics>> rows = ReadStatistics(*s);
+  Result<std::vector<lineage::CompletedGeneration>> rows =
+      lineage::CompletedGenerations(*s->store, s->run);
   if (!rows.ok()) return Fail(rows.status().message());
   if (rows->empty()) return Fail(o.dbs[0] + ": no completed generation yet");
   std::vector<figures::SheetEntry> entries;
   std::map<uint64_t, figures::SheetEntry> pictures;  // By id: elites repeat.
   for (size_t r = 0; r < rows->size(); ++r) {
-    const GenerationStatistics& g = (*rows)[r];
-    if (g.generation % o.every != 0 && r + 1 != rows->size()) continue;
+    const int generation = (*rows)[r].generation;
+    const lineage::GenerationStats& g = (*rows)[r].stats;
+    if (generation % o.every != 0 && r + 1 != rows->size()) continue;
     figures::SheetEntry entry;
     if (g.best_id) {
       auto it = pictures.find(*g.best_id);
@@ -258,7 +231,7 @@ int ContactSheet(const Options& o) {
     } else {
       entry.caption = "no individual with a fitness";
     }
-    entry.heading = "generation " + std::to_string(g.generation);
+    entry.heading = "generation " + std::to_string(generation);
     entries.push_back(std::move(entry));
   }
   const std::string title = "Best individual every " + std::to_string(o.every) +

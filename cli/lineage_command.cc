@@ -6,8 +6,6 @@
 // while a master writes. `upgrade` brings a store written by an older
 // animat to this build's schema (as a master of this build would), which
 // the questions need.
-#include <unistd.h>
-
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -117,33 +115,13 @@ int Export(const Options& o) {
 }
 
 int Upgrade(const Options& o) {
-  // Store::Open would create a missing store: a mistyped path is an error.
-  if (access(o.db.c_str(), F_OK) != 0) {
-    return Fail(o.db + ": no such lineage store");
-  }
-  int before = -1;
-  {
-    Result<std::unique_ptr<sql::Database>> db =
-        sql::Database::Open(o.db, /*read_only=*/true);
-    if (!db.ok()) return Fail(db.status().message());
-    Result<sql::Statement> version = (*db)->Prepare("PRAGMA user_version");
-    if (!version.ok()) return Fail(version.status().message());
-    Result<bool> row = version->Step();
-    if (!row.ok()) return Fail(row.status().message());
-    before = static_cast<int>(version->Int(0));
-  }
-  if (before == 0) {
-    return Fail(o.db + ": not a lineage store (schema version 0)");
-  }
-  // Takes the store's lock (refused while a master runs on it) and runs
-  // the missing migrations, each in one transaction.
-  Result<std::unique_ptr<lineage::Store>> store = lineage::Store::Open(o.db);
-  if (!store.ok()) return Fail(store.status().message());
-  if (before == lineage::kSchemaVersion) {
-    std::printf("%s: already at schema version %d\n", o.db.c_str(), before);
+  Result<int> before = lineage::Store::Upgrade(o.db);
+  if (!before.ok()) return Fail(before.status().message());
+  if (*before == lineage::kSchemaVersion) {
+    std::printf("%s: already at schema version %d\n", o.db.c_str(), *before);
   } else {
     std::printf("%s: upgraded from schema version %d to %d\n", o.db.c_str(),
-                before, lineage::kSchemaVersion);
+                *before, lineage::kSchemaVersion);
   }
   return 0;
 }

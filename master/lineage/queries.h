@@ -1,8 +1,13 @@
 // The questions users ask of a lineage store, answered for one run: the
-// best individual, the ancestors of an individual, and the whole phylogeny
-// in the ALife data standard's CSV (id, ancestor_list, origin_time, ...).
+// best individual, the ancestors of an individual, the whole phylogeny in
+// the ALife data standard's CSV (id, ancestor_list, origin_time, ...), the
+// statistics of the completed generations, and the counts that say whether
+// a run was recorded whole. The SQL behind them stays here: code outside
+// master/lineage/ asks through these functions and Store's methods.
 //
-// Read-only; any number may run while a master writes (WAL).
+// Read-only; any number may run while a master writes (WAL). Like Store,
+// not thread-safe: one thread uses a Store and these functions on it.
+// Errors are Store's: SQLite failures as Status values naming the file.
 #ifndef ANIMAT_MASTER_LINEAGE_QUERIES_H_
 #define ANIMAT_MASTER_LINEAGE_QUERIES_H_
 
@@ -40,6 +45,52 @@ Result<Summary> Best(Store& store, int64_t run);
 // Every ancestor of `id` (parents, their parents, ...), each once with its
 // shortest distance, nearest first, then by id. kNotFound for an unknown id.
 Result<std::vector<Summary>> Ancestors(Store& store, int64_t run, uint64_t id);
+
+// The scores of every individual of the run, in increasing id (no genomes
+// are read).
+Result<std::vector<Score>> Scores(Store& store, int64_t run);
+
+// A completed generation's statistics, as CompleteGeneration recorded
+// them.
+struct CompletedGeneration {
+  int generation = 0;
+  GenerationStats stats;
+};
+
+// The run's completed generations, in increasing generation (none for a
+// run that has completed none).
+Result<std::vector<CompletedGeneration>> CompletedGenerations(Store& store,
+                                                              int64_t run);
+
+// What the store holds of a run, counted, to check that a run was recorded
+// whole (animat-master-bench does). Counts of individuals are of those
+// made for the run, evaluated or not.
+struct RunCounts {
+  bool finished = false;     // The run's state is "finished".
+  int64_t individuals = 0;   // Made.
+  int64_t evaluated = 0;     // With an evaluation, of any status.
+  int64_t ok = 0;            // With status "ok".
+  int64_t with_fitness = 0;  // With a fitness.
+  int64_t with_worker = 0;   // Evaluated by a named worker.
+  int64_t with_evaluation_time = 0;
+  int64_t with_genome = 0;  // A genome of at least one element.
+  int64_t offspring = 0;    // Made for generation 1 or later.
+  int64_t offspring_without_parents = 0;
+  // Members of a generation, or offspring, not evaluated (only initial
+  // candidates not chosen may be).
+  int64_t needed_unevaluated = 0;
+  int64_t generations = 0;           // Begun.
+  int64_t complete_generations = 0;  // Completed.
+  // The members with status "ok" of the completed generations, summed
+  // (GenerationStats::evaluated).
+  int64_t generations_evaluated = 0;
+  int64_t members = 0;  // Of all generations.
+  int64_t ranked_members = 0;
+};
+
+// The counts of run `run` (all zero, and not finished, for an unknown
+// run).
+Result<RunCounts> CountRun(Store& store, int64_t run);
 
 // Writes the run's phylogeny as ALife-standard CSV: columns id,
 // ancestor_list ("[3,5]", or "[NONE]" for a random genome), origin_time

@@ -272,7 +272,9 @@ CREATE VIEW line_of_descent AS
 constexpr int kKnown = static_cast<int>(std::size(kMigrations));
 static_assert(kKnown == kSchemaVersion, "one migration per version");
 
-Result<int> UserVersion(sql::Database& db) {
+}  // namespace
+
+Result<int> SchemaVersion(sql::Database& db) {
   Result<sql::Statement> statement = db.Prepare("PRAGMA user_version");
   if (!statement.ok()) return statement.status();
   Result<bool> row = statement->Step();
@@ -280,14 +282,12 @@ Result<int> UserVersion(sql::Database& db) {
   return static_cast<int>(statement->Int(0));
 }
 
-}  // namespace
-
 Status Migrate(sql::Database& db, int target) {
   if (target < 0 || target > kSchemaVersion) {
     return Status::InvalidArgument("no lineage schema version " +
                                    std::to_string(target));
   }
-  Result<int> version = UserVersion(db);
+  Result<int> version = SchemaVersion(db);
   if (!version.ok()) return version.status();
   if (*version > kSchemaVersion) {
     return Status::InvalidArgument(

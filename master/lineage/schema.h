@@ -11,6 +11,11 @@ namespace animat::lineage {
 // The schema this build writes (PRAGMA user_version).
 inline constexpr int kSchemaVersion = 4;
 
+// The schema version of `db` (its PRAGMA user_version; 0 for a database
+// that is no lineage store): the one place it is read. Fails only on an
+// SQLite error, naming the file.
+Result<int> SchemaVersion(sql::Database& db);
+
 // Brings `db` from its user_version to `target` (tests ask for older
 // versions), one migration at a time, each in its own transaction. Refuses
 // a store written by a newer build (a higher version), saying both

@@ -16,6 +16,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 
 #include "common/base/status.h"
 
@@ -89,6 +90,11 @@ class Statement {
   // Steps once: true with a row to read, false when done. Errors name the
   // database's file.
   Result<bool> Step();
+  // Steps to completion, calling `row()` once for each row (it reads the
+  // columns of the current row). `row` returns void or a Status; the first
+  // failure, of a step or of `row`, ends the loop and is returned.
+  template <typename RowFunction>
+  Status ForEachRow(RowFunction&& row);
   // Steps to completion (for statements without rows) and resets.
   Status Run();
   // Ready for new bindings and steps.
@@ -112,6 +118,21 @@ class Statement {
   const std::string* path_;  // The Database's, for messages.
   bool* borrowed_;           // The Database's flag, for a borrowed statement.
 };
+
+template <typename RowFunction>
+Status Statement::ForEachRow(RowFunction&& row) {
+  for (;;) {
+    Result<bool> more = Step();
+    if (!more.ok()) return more.status();
+    if (!*more) return Status::Ok();
+    if constexpr (std::is_void_v<std::invoke_result_t<RowFunction&>>) {
+      row();
+    } else {
+      Status status = row();
+      if (!status.ok()) return status;
+    }
+  }
+}
 
 }  // namespace animat::sql
 

@@ -118,11 +118,9 @@ Result<std::unique_ptr<Store>> Store::OpenForQueries(const std::string& path) {
   Result<std::unique_ptr<sql::Database>> db =
       sql::Database::Open(path, /*read_only=*/true);
   if (!db.ok()) return db.status();
-  Result<sql::Statement> version = (*db)->Prepare("PRAGMA user_version");
+  Result<int> version = SchemaVersion(**db);
   if (!version.ok()) return version.status();
-  Result<bool> row = version->Step();
-  if (!row.ok()) return row.status();
-  const int found = static_cast<int>(version->Int(0));
+  const int found = *version;
   if (found != kSchemaVersion) {
     return Status::InvalidArgument(
         path + ": lineage schema version " + std::to_string(found) +
@@ -133,6 +131,31 @@ Result<std::unique_ptr<Store>> Store::OpenForQueries(const std::string& path) {
              : std::string(" (written by a newer animat)")));
   }
   return std::unique_ptr<Store>(new Store(std::move(db).value(), -1));
+}
+
+Result<int> Store::Upgrade(const std::string& path) {
+  // Open would create a missing store: a mistyped path is an error.
+  if (access(path.c_str(), F_OK) != 0) {
+    return Status::NotFound(path + ": no such lineage store");
+  }
+  int before = -1;
+  {
+    Result<std::unique_ptr<sql::Database>> db =
+        sql::Database::Open(path, /*read_only=*/true);
+    if (!db.ok()) return db.status();
+    Result<int> version = SchemaVersion(**db);
+    if (!version.ok()) return version.status();
+    before = *version;
+  }
+  if (before == 0) {
+    return Status::InvalidArgument(path +
+                                   ": not a lineage store (schema version 0)");
+  }
+  // Takes the store's lock (refused while a master runs on it) and runs
+  // the missing migrations, each in one transaction.
+  Result<std::unique_ptr<Store>> store = Open(path);
+  if (!store.ok()) return store.status();
+  return before;
 }
 
 Store::~Store() {
@@ -165,10 +188,7 @@ Result<std::vector<RunRow>> Store::Runs() {
       " ended_at, state FROM runs ORDER BY run_id");
   if (!select.ok()) return select.status();
   std::vector<RunRow> runs;
-  for (;;) {
-    Result<bool> row = select->Step();
-    if (!row.ok()) return row.status();
-    if (!*row) break;
+  Status status = select->ForEachRow([&]() -> Status {
     RunRow run;
     run.run_id = select->Int(0);
     run.seed = static_cast<uint64_t>(select->Int(1));
@@ -183,7 +203,9 @@ Result<std::vector<RunRow>> Store::Runs() {
     run.ended_at = select->IsNull(6) ? "" : select->Text(6);
     run.state = select->Text(7);
     runs.push_back(std::move(run));
-  }
+    return Status::Ok();
+  });
+  if (!status.ok()) return status;
   return runs;
 }
 
@@ -322,12 +344,9 @@ Result<std::vector<uint64_t>> ParentsOf(sql::Database& db, int64_t run,
   if (!select.ok()) return select.status();
   select->Bind(1, run).Bind(2, static_cast<int64_t>(id));
   std::vector<uint64_t> parents;
-  for (;;) {
-    Result<bool> row = select->Step();
-    if (!row.ok()) return row.status();
-    if (!*row) break;
-    parents.push_back(static_cast<uint64_t>(select->Int(0)));
-  }
+  Status status = select->ForEachRow(
+      [&] { parents.push_back(static_cast<uint64_t>(select->Int(0))); });
+  if (!status.ok()) return status;
   return parents;
 }
 
@@ -382,15 +401,14 @@ Result<std::vector<IndividualRow>> Store::IndividualsOf(int64_t run,
   if (!select.ok()) return select.status();
   select->Bind(1, run).Bind(2, static_cast<int64_t>(generation));
   std::vector<IndividualRow> out;
-  for (;;) {
-    Result<bool> row = select->Step();
-    if (!row.ok()) return row.status();
-    if (!*row) break;
+  Status status = select->ForEachRow([&]() -> Status {
     IndividualRow individual;
-    Status status = ReadIndividual(*db_, *select, run, &individual);
-    if (!status.ok()) return status;
+    Status read = ReadIndividual(*db_, *select, run, &individual);
+    if (!read.ok()) return read;
     out.push_back(std::move(individual));
-  }
+    return Status::Ok();
+  });
+  if (!status.ok()) return status;
   return out;
 }
 
@@ -398,16 +416,14 @@ namespace {
 
 Result<std::vector<Score>> ReadScores(sql::Statement& select) {
   std::vector<Score> scores;
-  for (;;) {
-    Result<bool> row = select.Step();
-    if (!row.ok()) return row.status();
-    if (!*row) break;
+  Status status = select.ForEachRow([&] {
     Score score;
     score.id = static_cast<uint64_t>(select.Int(0));
     score.evaluated = !select.IsNull(1);
     if (!select.IsNull(2)) score.fitness = select.Double(2);
     scores.push_back(score);
-  }
+  });
+  if (!status.ok()) return status;
   return scores;
 }
 
@@ -443,10 +459,7 @@ Result<std::vector<MemberGenome>> Store::MemberGenomes(int64_t run,
   if (!select.ok()) return select.status();
   select->Bind(1, run).Bind(2, static_cast<int64_t>(generation));
   std::vector<MemberGenome> members;
-  for (;;) {
-    Result<bool> row = select->Step();
-    if (!row.ok()) return row.status();
-    if (!*row) break;
+  Status status = select->ForEachRow([&]() -> Status {
     MemberGenome member;
     member.id = static_cast<uint64_t>(select->Int(0));
     if (!select->IsNull(1)) member.fitness = select->Double(1);
@@ -456,7 +469,9 @@ Result<std::vector<MemberGenome>> Store::MemberGenomes(int64_t run,
                                      " has an unreadable genome");
     }
     members.push_back(std::move(member));
-  }
+    return Status::Ok();
+  });
+  if (!status.ok()) return status;
   return members;
 }
 
@@ -468,12 +483,9 @@ Result<std::vector<uint64_t>> Store::Unevaluated(int64_t run) {
   if (!select.ok()) return select.status();
   select->Bind(1, run);
   std::vector<uint64_t> ids;
-  for (;;) {
-    Result<bool> row = select->Step();
-    if (!row.ok()) return row.status();
-    if (!*row) break;
-    ids.push_back(static_cast<uint64_t>(select->Int(0)));
-  }
+  Status status = select->ForEachRow(
+      [&] { ids.push_back(static_cast<uint64_t>(select->Int(0))); });
+  if (!status.ok()) return status;
   return ids;
 }
 
@@ -605,12 +617,9 @@ Result<GenerationRow> Store::Generation(int64_t run, int generation) {
       " ORDER BY rank, id");
   if (!members.ok()) return members.status();
   members->Bind(1, run).Bind(2, static_cast<int64_t>(generation));
-  for (;;) {
-    Result<bool> member = members->Step();
-    if (!member.ok()) return member.status();
-    if (!*member) break;
-    out.members.push_back(static_cast<uint64_t>(members->Int(0)));
-  }
+  Status status = members->ForEachRow(
+      [&] { out.members.push_back(static_cast<uint64_t>(members->Int(0))); });
+  if (!status.ok()) return status;
   return out;
 }
 

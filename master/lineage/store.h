@@ -114,7 +114,20 @@ class Store {
   // writing; WAL lets both proceed), no migration. Fails, saying so, when
   // the file does not exist or its schema is not this build's.
   static Result<std::unique_ptr<Store>> OpenForQueries(const std::string& path);
+  // Brings the existing store at `path` to this build's schema
+  // (kSchemaVersion), under its lock and with Open's migrations, and
+  // returns the schema version it had before (kSchemaVersion when there
+  // was nothing to do). Unlike Open, never creates a store: kNotFound
+  // ("<path>: no such lineage store") for a missing file,
+  // kInvalidArgument for an SQLite file that is no lineage store (schema
+  // version 0), Open's errors otherwise (another master holds the lock, a
+  // store written by a newer build, ...).
+  static Result<int> Upgrade(const std::string& path);
   ~Store();
+
+  // The path the store was opened with ("" or ":memory:" for an in-memory
+  // store), for messages.
+  const std::string& path() const { return db_->path(); }
 
   // Runs.
   Result<int64_t> CreateRun(uint64_t seed, const v1::RunConfig& config,
@@ -173,9 +186,14 @@ class Store {
   Result<std::optional<GenerationRow>> LatestGenerationHead(int64_t run);
   Result<GenerationRow> Generation(int64_t run, int generation);
 
+ private:
+  // The SQL stays in master/lineage/: its query functions reach the
+  // database through StoreAccess (store_access.h), tests through
+  // StoreTestPeer (tests/lineage/store_test_peer.h).
+  friend class StoreAccess;
+  friend class StoreTestPeer;
   sql::Database& database() { return *db_; }
 
- private:
   Store(std::unique_ptr<sql::Database> db, int lock_fd)
       : db_(std::move(db)), lock_fd_(lock_fd) {}
   Status InsertIndividual(int64_t run, const NewIndividual& n,

@@ -44,7 +44,7 @@ Result<std::unique_ptr<EvolutionRun>> EvolutionRun::Start(
   if (!runs.ok()) return runs.status();
   if (!runs->empty()) {
     return Status::InvalidArgument(
-        store->database().path() +
+        store->path() +
         ": already holds a run; continue it with --resume, or use another "
         "database");
   }
@@ -64,15 +64,14 @@ Result<std::unique_ptr<EvolutionRun>> EvolutionRun::Resume(
   Result<std::vector<lineage::RunRow>> runs = store->Runs();
   if (!runs.ok()) return runs.status();
   if (runs->empty()) {
-    return Status::NotFound(store->database().path() +
+    return Status::NotFound(store->path() +
                             ": no run to resume; start one with --config");
   }
   const lineage::RunRow& row = runs->back();
   RunSettings stored;
   Status status = RunSettingsFromProto(row.config, &stored);
   if (!status.ok()) {
-    return status.WithPrefix(store->database().path() +
-                             ": the stored configuration");
+    return status.WithPrefix(store->path() + ": the stored configuration");
   }
   // How many generations to run decides no individual: it may change.
   const auto comparable = [](RunSettings s) {
@@ -89,7 +88,7 @@ Result<std::unique_ptr<EvolutionRun>> EvolutionRun::Resume(
                        "\" (results could differ in the last bits)");
   }
   if (!problems.empty() && !force) {
-    std::string message = store->database().path() + ": refusing to resume:";
+    std::string message = store->path() + ": refusing to resume:";
     for (const std::string& p : problems) message += " " + p + ";";
     return Status::InvalidArgument(message + " --force resumes anyway");
   }
@@ -276,7 +275,7 @@ Status EvolutionRun::AdvanceInitial(Dispatcher* dispatcher, bool* changed) {
     if (!stored.ok()) return stored.status();
     for (size_t i = 0; i < stored->size(); ++i) {
       if ((*stored)[i].id != i) {
-        return Status::Internal(store_->database().path() +
+        return Status::Internal(store_->path() +
                                 ": the random candidates of generation 0 are "
                                 "not numbered 0, 1, ...: individual " +
                                 std::to_string((*stored)[i].id) +

@@ -14,6 +14,7 @@
 #include "common/protocol/genome_wire.h"
 #include "master/lineage/store.h"
 #include "tests/lineage/lineage_test_util.h"
+#include "tests/lineage/store_test_peer.h"
 
 namespace animat::lineage {
 namespace {
@@ -277,7 +278,7 @@ TEST_F(IndividualsTest, RecordEvaluationsRecordsTheBodySummary) {
              {"2", "non_viable", "1", "NULL", "NULL", "NULL", "null", "null"},
              {"3", "too_few_cells", "1", "NULL", "NULL", "NULL", "null",
               "null"}}));
-  Result<sql::Statement> spreads = store_->database().Prepare(
+  Result<sql::Statement> spreads = StoreTestPeer::Database(*store_).Prepare(
       "SELECT spread_major, spread_minor FROM individuals WHERE id = ?");
   ASSERT_TRUE(spreads.ok());
   for (const Evaluation* e : {&ok, &chain}) {
@@ -366,7 +367,7 @@ TEST_F(IndividualsTest, RecordEvaluationsIsOneTransaction) {
                                   MakeIndividual(3, 0)})
           .ok());
   // Fault injection: recording individual 3's evaluation fails.
-  ASSERT_TRUE(store_->database()
+  ASSERT_TRUE(StoreTestPeer::Database(*store_)
                   .Execute("CREATE TEMP TRIGGER fail_three BEFORE INSERT ON "
                            "main.evaluations WHEN NEW.id = 3 BEGIN SELECT "
                            "RAISE(ABORT, 'injected failure'); END")
@@ -385,7 +386,8 @@ TEST_F(IndividualsTest, RecordEvaluationsIsOneTransaction) {
             "0");
 
   // Once the fault is gone the same batch goes through.
-  ASSERT_TRUE(store_->database().Execute("DROP TRIGGER fail_three").ok());
+  ASSERT_TRUE(
+      StoreTestPeer::Database(*store_).Execute("DROP TRIGGER fail_three").ok());
   EXPECT_TRUE(
       store_
           ->RecordEvaluations(run_, {OkEvaluation(1, 1.0), OkEvaluation(2, 2.0),

@@ -23,6 +23,7 @@
 #include "animat/v1/genome.pb.h"
 #include "animat/v1/trace.pb.h"
 #include "master/lineage/store.h"
+#include "tests/lineage/store_test_peer.h"
 
 namespace animat::testing {
 
@@ -160,8 +161,8 @@ inline std::vector<std::vector<std::string>> Rows(lineage::Store& store,
     return 0;
   };
   char* error = nullptr;
-  if (sqlite3_exec(store.database().handle(), query.c_str(), collect, &rows,
-                   &error) != SQLITE_OK) {
+  if (sqlite3_exec(lineage::StoreTestPeer::Database(store).handle(),
+                   query.c_str(), collect, &rows, &error) != SQLITE_OK) {
     ADD_FAILURE() << query << ": " << (error != nullptr ? error : "error");
     sqlite3_free(error);
   }

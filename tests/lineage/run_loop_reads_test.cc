@@ -12,6 +12,7 @@
 #include "common/protocol/genome_wire.h"
 #include "master/lineage/store.h"
 #include "tests/lineage/lineage_test_util.h"
+#include "tests/lineage/store_test_peer.h"
 
 namespace animat::lineage {
 namespace {
@@ -66,7 +67,7 @@ TEST_F(RunLoopReadsTest, MemberGenomesAreTheMembersWithFitnessAndGenome) {
 TEST_F(RunLoopReadsTest, MemberGenomesFailsNamingAnUnreadableGenome) {
   ASSERT_TRUE(store_->AddGeneration(run_, 0, {0, 2}).ok());
   ASSERT_TRUE(
-      store_->database()
+      StoreTestPeer::Database(*store_)
           .Execute("UPDATE births SET genome = X'ffffffff' WHERE id = 2")
           .ok());
   Result<std::vector<MemberGenome>> members = store_->MemberGenomes(run_, 0);

@@ -12,6 +12,7 @@
 #include "common/protocol/genome_wire.h"
 #include "master/lineage/store.h"
 #include "tests/lineage/lineage_test_util.h"
+#include "tests/lineage/store_test_peer.h"
 
 namespace animat::lineage {
 namespace {
@@ -143,8 +144,9 @@ TEST(RunsTest, UnreadableConfigurationIsReportedNotIgnored) {
   std::unique_ptr<Store> store = MemoryStore();
   ASSERT_NE(store, nullptr);
   ASSERT_TRUE(store->CreateRun(1, SmallRunConfig(1), "b").ok());
-  ASSERT_TRUE(
-      store->database().Execute("UPDATE runs SET config = X'ffffffff'").ok());
+  ASSERT_TRUE(StoreTestPeer::Database(*store)
+                  .Execute("UPDATE runs SET config = X'ffffffff'")
+                  .ok());
   Result<std::vector<RunRow>> runs = store->Runs();
   ASSERT_FALSE(runs.ok());
   EXPECT_NE(runs.status().message().find("unreadable configuration"),
@@ -156,8 +158,9 @@ TEST(RunsTest, StateIsCheckedBySchema) {
   std::unique_ptr<Store> store = MemoryStore();
   ASSERT_NE(store, nullptr);
   ASSERT_TRUE(store->CreateRun(1, SmallRunConfig(1), "b").ok());
-  EXPECT_FALSE(
-      store->database().Execute("UPDATE runs SET state = 'paused'").ok());
+  EXPECT_FALSE(StoreTestPeer::Database(*store)
+                   .Execute("UPDATE runs SET state = 'paused'")
+                   .ok());
   EXPECT_EQ(Value(*store, "SELECT state FROM runs"), "running");
 }
 

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -19,6 +20,7 @@
 #include "master/lineage/sqlite.h"
 #include "master/lineage/store.h"
 #include "tests/lineage/lineage_test_util.h"
+#include "tests/lineage/store_test_peer.h"
 
 namespace animat::lineage {
 namespace {
@@ -48,10 +50,9 @@ int UserVersion(const std::string& path) {
       sql::Database::Open(path, /*read_only=*/true);
   EXPECT_TRUE(db.ok()) << db.status().ToString();
   if (!db.ok()) return -1;
-  Result<sql::Statement> pragma = (*db)->Prepare("PRAGMA user_version");
-  EXPECT_TRUE(pragma.ok());
-  if (!pragma.ok() || !pragma->Step().ok()) return -1;
-  return static_cast<int>(pragma->Int(0));
+  Result<int> version = SchemaVersion(**db);
+  EXPECT_TRUE(version.ok()) << version.status().ToString();
+  return version.ok() ? *version : -1;
 }
 
 // What a child process reports: its exit code and the text it wrote.
@@ -104,8 +105,8 @@ Status OpenAndClose(const std::string& path) {
 TEST(SchemaTest, NewStoreHasCurrentVersionTablesViewsAndIndexes) {
   std::unique_ptr<Store> store = MemoryStore();
   ASSERT_NE(store, nullptr);
-  EXPECT_EQ(Value(*store, "PRAGMA user_version"),
-            std::to_string(kSchemaVersion));
+  EXPECT_EQ(SchemaVersion(StoreTestPeer::Database(*store)).value(),
+            kSchemaVersion);
   const std::vector<std::vector<std::string>> objects =
       Rows(*store,
            "SELECT type, name FROM sqlite_schema WHERE name NOT LIKE "
@@ -170,8 +171,8 @@ TEST(SchemaTest, ReopeningKeepsDataAndDoesNotMigrateAgain) {
   }
   Result<std::unique_ptr<Store>> store = Store::Open(file.path());
   ASSERT_TRUE(store.ok()) << store.status().ToString();
-  EXPECT_EQ(Value(**store, "PRAGMA user_version"),
-            std::to_string(kSchemaVersion));
+  EXPECT_EQ(SchemaVersion(StoreTestPeer::Database(**store)).value(),
+            kSchemaVersion);
   EXPECT_EQ(Value(**store, "SELECT COUNT(*) FROM individuals"), "1");
 }
 
@@ -595,6 +596,53 @@ TEST(OpenForQueriesTest, RefusesAnOlderSchemaVersionWithoutUpgradingIt) {
   EXPECT_TRUE(Contains(message, "version 0")) << message;
   EXPECT_TRUE(Contains(message, "upgrades")) << message;
   EXPECT_EQ(UserVersion(file.path()), 0);
+}
+
+TEST(UpgradeTest, BringsAnOlderStoreToThisSchemaAndSaysFromWhich) {
+  TempStorePath file("upgrade-older");
+  {
+    Result<std::unique_ptr<sql::Database>> db =
+        sql::Database::Open(file.path());
+    ASSERT_TRUE(db.ok()) << db.status().ToString();
+    ASSERT_TRUE(Migrate(**db, 2).ok());
+  }
+  Result<int> before = Store::Upgrade(file.path());
+  ASSERT_TRUE(before.ok()) << before.status().ToString();
+  EXPECT_EQ(*before, 2);
+  EXPECT_EQ(UserVersion(file.path()), kSchemaVersion);
+  before = Store::Upgrade(file.path());
+  ASSERT_TRUE(before.ok()) << before.status().ToString();
+  EXPECT_EQ(*before, kSchemaVersion);
+}
+
+TEST(UpgradeTest, RefusesAMissingFileWithoutCreatingIt) {
+  TempStorePath file("upgrade-missing");
+  Result<int> before = Store::Upgrade(file.path());
+  ASSERT_FALSE(before.ok());
+  EXPECT_EQ(before.status().code(), StatusCode::kNotFound);
+  EXPECT_EQ(before.status().message(), file.path() + ": no such lineage store");
+  EXPECT_FALSE(std::filesystem::exists(file.path()));
+}
+
+TEST(UpgradeTest, RefusesAFileThatIsNoLineageStore) {
+  TempStorePath file("upgrade-other");
+  { std::ofstream touch(file.path()); }  // Version 0.
+  Result<int> before = Store::Upgrade(file.path());
+  ASSERT_FALSE(before.ok());
+  EXPECT_EQ(before.status().code(), StatusCode::kInvalidArgument);
+  EXPECT_TRUE(Contains(before.status().message(), "not a lineage store"))
+      << before.status().message();
+  EXPECT_EQ(UserVersion(file.path()), 0);
+}
+
+TEST(UpgradeTest, RefusesAStoreAMasterHolds) {
+  TempStorePath file("upgrade-held");
+  Result<std::unique_ptr<Store>> master = Store::Open(file.path());
+  ASSERT_TRUE(master.ok()) << master.status().ToString();
+  Result<int> before = Store::Upgrade(file.path());
+  ASSERT_FALSE(before.ok());
+  EXPECT_TRUE(Contains(before.status().message(), "in use by another master"))
+      << before.status().message();
 }
 
 // docs/lineage.md describes every table and view under a "### `name`"

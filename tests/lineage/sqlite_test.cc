@@ -1,5 +1,6 @@
 // The SQLite layer's kept statements (sql::Database::Cached): prepared
-// once, lent out, and returned reset, with no read left open.
+// once, lent out, and returned reset, with no read left open; and the row
+// loop (Statement::ForEachRow).
 #include "master/lineage/sqlite.h"
 
 #include <gtest/gtest.h>
@@ -8,6 +9,7 @@
 #include <cstdlib>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace animat::sql {
 namespace {
@@ -149,6 +151,47 @@ TEST_F(CachedStatementTest, KeepsWorkingAfterTheSchemaChanges) {
   Result<bool> row = select->Step();
   ASSERT_TRUE(row.ok() && *row) << (row.ok() ? "" : row.status().ToString());
   EXPECT_EQ(select->Text(0), "d");
+}
+
+TEST_F(CachedStatementTest, ForEachRowCallsTheRowFunctionForEveryRowInOrder) {
+  Result<Statement> select = db_->Cached(kSelect);
+  ASSERT_TRUE(select.ok());
+  select->Bind(1, int64_t{2});
+  std::vector<std::string> seen;
+  const Status status =
+      select->ForEachRow([&] { seen.push_back(select->Text(0)); });
+  ASSERT_TRUE(status.ok()) << status.ToString();
+  EXPECT_EQ(seen, (std::vector<std::string>{"b", "c"}));
+}
+
+TEST_F(CachedStatementTest, ForEachRowStopsAtTheRowFunctionsFailure) {
+  Result<Statement> select = db_->Cached(kSelect);
+  ASSERT_TRUE(select.ok());
+  select->Bind(1, int64_t{1});
+  std::vector<std::string> seen;
+  const Status status = select->ForEachRow([&]() -> Status {
+    seen.push_back(select->Text(0));
+    if (select->Text(0) == "b") return Status::InvalidArgument("row b");
+    return Status::Ok();
+  });
+  EXPECT_EQ(status.code(), StatusCode::kInvalidArgument);
+  EXPECT_EQ(status.message(), "row b");
+  EXPECT_EQ(seen, (std::vector<std::string>{"a", "b"}));
+}
+
+TEST_F(CachedStatementTest, ForEachRowReturnsAFailedStep) {
+  // The second row's value overflows a 64-bit integer: SQLite fails the
+  // step that computes it.
+  Result<Statement> select = db_->Prepare(
+      "SELECT abs(CASE k WHEN 2 THEN -9223372036854775807 - 1 ELSE k END)"
+      " FROM t ORDER BY k");
+  ASSERT_TRUE(select.ok());
+  int rows = 0;
+  const Status status = select->ForEachRow([&] { ++rows; });
+  EXPECT_FALSE(status.ok());
+  EXPECT_NE(status.message().find("overflow"), std::string::npos)
+      << status.ToString();
+  EXPECT_EQ(rows, 1);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -144,6 +145,108 @@ TEST_F(ViewsTest, GenerationStatisticsShowsEachGeneration) {
            " ORDER BY generation"),
       (Table{{"0", "2", "2", "0", "2", "2.0", "1.5", "1.5", "1"},
              {"1", "3", "NULL", "NULL", "NULL", "NULL", "NULL", "NULL", "0"}}));
+}
+
+TEST_F(ViewsTest, CompletedGenerationsGivesTheRecordedStatisticsInOrder) {
+  Result<std::vector<CompletedGeneration>> none =
+      CompletedGenerations(*store_, run_);
+  ASSERT_TRUE(none.ok()) << none.status().ToString();
+  EXPECT_TRUE(none->empty());
+  ASSERT_TRUE(store_->AddGeneration(run_, 0, {kA, kB}).ok());
+  ASSERT_TRUE(store_->AddGeneration(run_, 1, {kB, kC, kD}).ok());
+  ASSERT_TRUE(store_->AddGeneration(run_, 2, {kC, kE, kF}).ok());
+  GenerationStats first;
+  first.evaluated = 2;
+  first.best_id = kB;
+  first.best = 2.0;
+  first.mean = 1.5;
+  first.median = 1.5;
+  ASSERT_TRUE(store_->CompleteGeneration(run_, 0, {kB, kA}, first).ok());
+  GenerationStats third;  // No fitness at all: the optionals stay empty.
+  third.failed = 3;
+  ASSERT_TRUE(store_->CompleteGeneration(run_, 2, {kC, kE, kF}, third).ok());
+  // Generation 1 is not complete and is left out.
+  Result<std::vector<CompletedGeneration>> done =
+      CompletedGenerations(*store_, run_);
+  ASSERT_TRUE(done.ok()) << done.status().ToString();
+  ASSERT_EQ(done->size(), 2u);
+  EXPECT_EQ((*done)[0].generation, 0);
+  EXPECT_EQ((*done)[0].stats.evaluated, 2);
+  EXPECT_EQ((*done)[0].stats.failed, 0);
+  EXPECT_EQ((*done)[0].stats.best_id, std::optional<uint64_t>(kB));
+  EXPECT_EQ((*done)[0].stats.best, std::optional<double>(2.0));
+  EXPECT_EQ((*done)[0].stats.mean, std::optional<double>(1.5));
+  EXPECT_EQ((*done)[0].stats.median, std::optional<double>(1.5));
+  EXPECT_EQ((*done)[1].generation, 2);
+  EXPECT_EQ((*done)[1].stats.evaluated, 0);
+  EXPECT_EQ((*done)[1].stats.failed, 3);
+  EXPECT_FALSE((*done)[1].stats.best_id);
+  EXPECT_FALSE((*done)[1].stats.best);
+  EXPECT_FALSE((*done)[1].stats.mean);
+  EXPECT_FALSE((*done)[1].stats.median);
+}
+
+TEST_F(ViewsTest, ScoresGivesEveryIndividualInIdOrder) {
+  ASSERT_TRUE(store_->AddIndividuals(run_, {MakeIndividual(7, 3)}).ok());
+  Result<std::vector<Score>> scores = Scores(*store_, run_);
+  ASSERT_TRUE(scores.ok()) << scores.status().ToString();
+  ASSERT_EQ(scores->size(), 7u);
+  const std::vector<std::optional<double>> fitness = {
+      1.0, 2.0, 3.0, 2.5, 5.0, std::nullopt, std::nullopt};
+  for (size_t i = 0; i < scores->size(); ++i) {
+    EXPECT_EQ((*scores)[i].id, i + 1);
+    EXPECT_EQ((*scores)[i].evaluated, i + 1 != 7) << "id " << i + 1;
+    EXPECT_EQ((*scores)[i].fitness, fitness[i]) << "id " << i + 1;
+  }
+  const int64_t other = MakeRun(*store_);
+  Result<std::vector<Score>> empty = Scores(*store_, other);
+  ASSERT_TRUE(empty.ok());
+  EXPECT_TRUE(empty->empty());
+}
+
+TEST_F(ViewsTest, CountRunCountsWhatTheRunHolds) {
+  // Generation 0 of A and B, complete; generation 1 of B, C and a new,
+  // unevaluated individual G without parents.
+  constexpr uint64_t kG = 7;
+  ASSERT_TRUE(store_->AddGeneration(run_, 0, {kA, kB}).ok());
+  GenerationStats stats;
+  stats.evaluated = 2;
+  ASSERT_TRUE(store_->CompleteGeneration(run_, 0, {kB, kA}, stats).ok());
+  ASSERT_TRUE(
+      store_->AddGeneration(run_, 1, {kB, kC, kG}, {MakeIndividual(kG, 1)})
+          .ok());
+  Result<RunCounts> n = CountRun(*store_, run_);
+  ASSERT_TRUE(n.ok()) << n.status().ToString();
+  EXPECT_FALSE(n->finished);
+  EXPECT_EQ(n->individuals, 7);
+  EXPECT_EQ(n->evaluated, 6);
+  EXPECT_EQ(n->ok, 5);  // F failed.
+  EXPECT_EQ(n->with_fitness, 5);
+  EXPECT_EQ(n->with_worker, 6);
+  EXPECT_EQ(n->with_evaluation_time, 6);
+  EXPECT_EQ(n->with_genome, 7);
+  EXPECT_EQ(n->offspring, 5);                  // C, D, E, F and G.
+  EXPECT_EQ(n->offspring_without_parents, 1);  // G.
+  EXPECT_EQ(n->needed_unevaluated, 1);         // G.
+  EXPECT_EQ(n->generations, 2);
+  EXPECT_EQ(n->complete_generations, 1);
+  EXPECT_EQ(n->generations_evaluated, 2);
+  EXPECT_EQ(n->members, 5);
+  EXPECT_EQ(n->ranked_members, 2);
+
+  ASSERT_TRUE(store_->FinishRun(run_).ok());
+  n = CountRun(*store_, run_);
+  ASSERT_TRUE(n.ok());
+  EXPECT_TRUE(n->finished);
+
+  // Another run's rows are not counted.
+  const int64_t other = MakeRun(*store_);
+  Result<RunCounts> none = CountRun(*store_, other);
+  ASSERT_TRUE(none.ok());
+  EXPECT_FALSE(none->finished);
+  EXPECT_EQ(none->individuals, 0);
+  EXPECT_EQ(none->generations, 0);
+  EXPECT_EQ(none->members, 0);
 }
 
 TEST_F(ViewsTest, BestQuery) {
