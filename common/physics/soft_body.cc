@@ -8,6 +8,17 @@
 #include "common/geometry/polygon.h"
 
 namespace animat {
+namespace {
+
+// Shu and Osher's strong-stability-preserving scheme (c = 0, 1, 1/2).
+constexpr SoftBody::Rk3Tableau kSsprk3Tableau = {
+    1.0, 0.25, 0.25, 1.0 / 6.0, 1.0 / 6.0, 2.0 / 3.0};
+// Ralston's, with the smallest truncation error bound of the three-stage
+// third-order schemes (c = 0, 1/2, 3/4).
+constexpr SoftBody::Rk3Tableau kRalston3Tableau = {
+    0.5, 0.0, 0.75, 2.0 / 9.0, 1.0 / 3.0, 4.0 / 9.0};
+
+}  // namespace
 
 SoftBody::SoftBody(const Body& body, const PhysicsParams& params)
     : params_(params), nodes_(body.nodes()) {
@@ -146,6 +157,12 @@ void SoftBody::Step(MotionState* state) {
         break;
       case Integrator::kRk4:
         Rk4Step(h, !stable, state);
+        break;
+      case Integrator::kSsprk3:
+        Rk3Step(h, !stable, kSsprk3Tableau, state);
+        break;
+      case Integrator::kRalston3:
+        Rk3Step(h, !stable, kRalston3Tableau, state);
         break;
     }
     if (stable) ApplyStableDrag(0.5 * h, state);
@@ -290,6 +307,43 @@ void SoftBody::Rk4Step(double h, bool drag, MotionState* state) {
         (k_[0][i] + k_[2][i] * 2.0 + k_[4][i] * 2.0 + k_[6][i]) * sixth;
     state->velocity[i] +=
         (k_[1][i] + k_[3][i] * 2.0 + k_[5][i] * 2.0 + k_[7][i]) * sixth;
+  }
+}
+
+void SoftBody::Rk3Step(double h, bool drag, const Rk3Tableau& t,
+                       MotionState* state) {
+  // k_[2s] = dx/dt, k_[2s + 1] = dv/dt at stage s.
+  std::vector<Vec2>& dx1 = k_[0];
+  std::vector<Vec2>& dv1 = k_[1];
+  std::vector<Vec2>& dx2 = k_[2];
+  std::vector<Vec2>& dv2 = k_[3];
+  std::vector<Vec2>& dx3 = k_[4];
+  std::vector<Vec2>& dv3 = k_[5];
+  stage_.position.resize(nodes_);
+  stage_.velocity.resize(nodes_);
+  dx1.resize(nodes_);
+  dx2.resize(nodes_);
+  dx3.resize(nodes_);
+  for (int i = 0; i < nodes_; ++i) dx1[i] = state->velocity[i];
+  Acceleration(*state, drag, &dv1);
+  const double h21 = h * t.a21;
+  for (int i = 0; i < nodes_; ++i) {
+    stage_.position[i] = state->position[i] + dx1[i] * h21;
+    stage_.velocity[i] = state->velocity[i] + dv1[i] * h21;
+    dx2[i] = stage_.velocity[i];
+  }
+  Acceleration(stage_, drag, &dv2);
+  for (int i = 0; i < nodes_; ++i) {
+    stage_.position[i] =
+        state->position[i] + (dx1[i] * t.a31 + dx2[i] * t.a32) * h;
+    stage_.velocity[i] =
+        state->velocity[i] + (dv1[i] * t.a31 + dv2[i] * t.a32) * h;
+    dx3[i] = stage_.velocity[i];
+  }
+  Acceleration(stage_, drag, &dv3);
+  for (int i = 0; i < nodes_; ++i) {
+    state->position[i] += (dx1[i] * t.b1 + dx2[i] * t.b2 + dx3[i] * t.b3) * h;
+    state->velocity[i] += (dv1[i] * t.b1 + dv2[i] * t.b2 + dv3[i] * t.b3) * h;
   }
 }
 
