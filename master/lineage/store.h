@@ -205,8 +205,6 @@ class Store {
   int lock_fd_;  // flock()ed "<path>.lock", -1 for in-memory stores.
 };
 
-// "2026-11-21T14:03:07.123Z", now.
-std::string UtcNow();
 // 16 lowercase hex digits.
 std::string Hex64(uint64_t value);
 

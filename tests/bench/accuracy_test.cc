@@ -153,7 +153,7 @@ TEST(SvgTest, WellFormedWithOnePointPerCandidateAndTheFrontDrawn) {
       {"E1", "semi-implicit Euler", 30, 0.05, true},
       {"E2", "semi-implicit Euler", 35, 0.04, false},
       {"R4", "RK4", 120, 1e-6, true},
-      {"V2<&>", "velocity Verlet", 60, 0.2, false},
+      {"V2<&>'", "velocity Verlet", 60, 0.2, false},
       {"B1", "Bullet", 110, 0.05, false},
   };
   PlotOptions options;
@@ -176,7 +176,8 @@ TEST(SvgTest, WellFormedWithOnePointPerCandidateAndTheFrontDrawn) {
   const size_t from = svg.find("points=\"", at) + 8;
   const std::string coordinates = svg.substr(from, svg.find('"', from) - from);
   EXPECT_EQ(Count(coordinates, ","), 2) << coordinates;
-  EXPECT_NE(svg.find("V2&lt;&amp;&gt;"), std::string::npos);
+  // Escaped as figures/ escape (common/svg), apostrophes too.
+  EXPECT_NE(svg.find("V2&lt;&amp;&gt;&apos;"), std::string::npos);
   // Tick labels on both axes.
   EXPECT_NE(svg.find(">100<"), std::string::npos);
   EXPECT_NE(svg.find(">1e-6<"), std::string::npos);
