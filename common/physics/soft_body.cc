@@ -92,8 +92,11 @@ void SoftBody::AddPressure(const Vec2* x, Vec2* force) const {
     // bit): the shoelace sum relative to the first vertex.
     const Vec2 origin = x[walk[begin]];
     double twice = 0.0;
+    Vec2 from = x[walk[begin + 1]] - origin;
     for (int k = begin + 1; k + 1 < end; ++k) {
-      twice += Cross(x[walk[k]] - origin, x[walk[k + 1]] - origin);
+      const Vec2 to = x[walk[k + 1]] - origin;
+      twice += Cross(from, to);
+      from = to;
     }
     const double area = 0.5 * twice;
     // c_p * l * (1 - S / S0) * n with n = (dy, -dx) / l, half to each end.
@@ -171,18 +174,25 @@ void SoftBody::Step(MotionState* state) {
 
 void SoftBody::EulerStep(double h, bool drag, MotionState* state) {
   ComputeForces(*state, &force_, drag);
-  const double m = params_.mass;
+  DivideByMass(&force_);
   for (int i = 0; i < nodes_; ++i) {
-    state->velocity[i] += force_[i] / m * h;
+    state->velocity[i] += force_[i] * h;
     state->position[i] += state->velocity[i] * h;
   }
+}
+
+void SoftBody::DivideByMass(std::vector<Vec2>* force) const {
+  // x / 1 is x exactly (IEEE division is correctly rounded), so the
+  // default mass skips the divisions and keeps the bits.
+  const double m = params_.mass;
+  if (m == 1.0) return;
+  for (Vec2& f : *force) f = f / m;
 }
 
 void SoftBody::Acceleration(const MotionState& state, bool drag,
                             std::vector<Vec2>* out) {
   ComputeForces(state, out, drag);
-  const double m = params_.mass;
-  for (Vec2& a : *out) a = a / m;
+  DivideByMass(out);
 }
 
 void SoftBody::Measure(const std::vector<Vec2>& position,
@@ -246,8 +256,7 @@ void SoftBody::AccelerationFrom(const Geometry& geometry,
       force[b] += half;
     }
   }
-  const double m = params_.mass;
-  for (Vec2& a : force) a = a / m;
+  DivideByMass(out);
 }
 
 void SoftBody::VerletStep(double h, bool drag, MotionState* state) {

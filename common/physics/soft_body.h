@@ -130,6 +130,8 @@ class SoftBody : public MotionStepper {
   void AccelerationFrom(const Geometry& geometry,
                         const std::vector<Vec2>& velocity, bool drag,
                         std::vector<Vec2>* out) const;
+  // F <- F / m, node by node.
+  void DivideByMass(std::vector<Vec2>* force) const;
   // force_ <- acceleration F / m at `state`.
   void Acceleration(const MotionState& state, bool drag,
                     std::vector<Vec2>* out);
