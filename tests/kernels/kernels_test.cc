@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "common/base/fast_math.h"
 #include "common/base/rng.h"
 #include "common/evaluation/evaluator.h"
 #include "common/genome/genome_proto.h"
@@ -237,6 +238,26 @@ TEST(KernelsTest, PairKernelsGiveTheBaselinesBitsOnEveryPath) {
         ASSERT_EQ(Bits(base[i]), Bits(wide[i]))
             << IsaName(isa) << " pairs " << pairs << " value " << i;
       }
+    }
+  }
+  // Every path against the model's formulas written with std::floor,
+  // including values just below and above the integers and beyond 2^52.
+  for (double y : {1.0, 2.0, 126.0, 127.0, 128.0, 0x1p52, 0x1p53, 1e300}) {
+    for (double e : {-1e-12, 0.0, 1e-12}) {
+      distance.push_back((y + e - 0.5) * 0.25);
+    }
+    distance.push_back(std::nextafter(y - 0.5, 0.0) * 0.25);
+  }
+  for (Isa isa : SupportedIsas()) {
+    const std::vector<double> got = run(isa, distance.size());
+    const size_t n = distance.size();
+    for (size_t p = 0; p < n; ++p) {
+      const double d = distance[p];
+      const double steps = std::floor(d / 0.25 + 0.5);
+      const double delay = steps < 127.0 ? steps : 127.0;
+      ASSERT_EQ(Bits(got[n + p]), Bits(delay))
+          << IsaName(isa) << " d " << d << ": " << got[n + p];
+      ASSERT_EQ(Bits(got[p]), Bits(Exp(-d / 3.0))) << IsaName(isa);
     }
   }
   const std::vector<double> some = run(Isa::kBaseline, 12);
