@@ -45,7 +45,7 @@
 
 #include "bench/timing.h"
 #include "bench/worker_processes.h"
-#include "master/dispatcher.h"
+#include "master/dispatch/dispatcher.h"
 #include "master/lineage/queries.h"
 #include "master/lineage/store.h"
 #include "master/run/evolution_run.h"
@@ -203,8 +203,8 @@ int Bench(const Options& options) {
   dispatcher_options.heartbeat_ms = options.heartbeat_ms;
   dispatcher_options.log =
       options.verbose ? Prefixed("dispatcher", StderrSink) : quiet;
-  Result<std::unique_ptr<Dispatcher>> dispatcher =
-      Dispatcher::Create(&context, dispatcher_options, (*run)->model_config());
+  Result<std::unique_ptr<Dispatcher>> dispatcher = Dispatcher::Create(
+      &context, dispatcher_options, ConfigToProto((*run)->model_config()));
   if (!dispatcher.ok()) {
     std::fprintf(stderr, "%s\n", dispatcher.status().ToString().c_str());
     return 1;

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "master/dispatcher.h"
+#include "master/dispatch/dispatcher.h"
 
 namespace animat::bench {
 

@@ -22,7 +22,7 @@
 #include <zmq.hpp>
 
 #include "cli/commands.h"
-#include "master/dispatcher.h"
+#include "master/dispatch/dispatcher.h"
 #include "master/progress.h"
 #include "master/run/evolution_run.h"
 
@@ -153,8 +153,8 @@ int Run(const Options& o) {
   options.log = [](std::string_view) {};  // Joins and leaves are routine.
   // Workers keep each result until the run has committed it.
   options.acknowledge_on_receipt = false;
-  Result<std::unique_ptr<Dispatcher>> dispatcher =
-      Dispatcher::Create(&context, options, (*run)->model_config());
+  Result<std::unique_ptr<Dispatcher>> dispatcher = Dispatcher::Create(
+      &context, options, ConfigToProto((*run)->model_config()));
   if (!dispatcher.ok()) return Fail(dispatcher.status().message());
   const int count =
       o.workers > 0

@@ -21,7 +21,7 @@
 #include <zmq.hpp>
 
 #include "common/security/curve_keys.h"
-#include "master/dispatcher.h"
+#include "master/dispatch/dispatcher.h"
 #include "master/progress.h"
 #include "master/run/evolution_run.h"
 
@@ -139,8 +139,8 @@ int main(int argc, char** argv) {
   if (!run.ok()) return Fail(run.status().message());
 
   zmq::context_t context(1);
-  auto dispatcher =
-      animat::Dispatcher::Create(&context, options, (*run)->model_config());
+  auto dispatcher = animat::Dispatcher::Create(
+      &context, options, animat::ConfigToProto((*run)->model_config()));
   if (!dispatcher.ok()) return Fail(dispatcher.status().message());
   const animat::LogSink log = animat::Prefixed("master", animat::StderrSink);
   animat::Status status = (*run)->Run(

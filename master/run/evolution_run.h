@@ -27,7 +27,7 @@
 #include "common/base/log.h"
 #include "common/base/status.h"
 #include "common/genome/genome.h"
-#include "master/dispatcher.h"
+#include "master/dispatch/dispatcher.h"
 #include "master/evolution/evolution_params.h"
 #include "master/evolution/operators.h"
 #include "master/lineage/store.h"

@@ -17,7 +17,7 @@
 #include <vector>
 #include <zmq.hpp>
 
-#include "master/dispatcher.h"
+#include "master/dispatch/dispatcher.h"
 #include "master/lineage/store.h"
 #include "master/run/evolution_run.h"
 #include "tests/dispatch/worker_process.h"
@@ -74,8 +74,8 @@ class NullEvaluationRunTest : public ::testing::Test {
     options.heartbeat_ms = 100;
     options.accept_null_workers = true;
     options.log = [](std::string_view) {};
-    Result<std::unique_ptr<Dispatcher>> dispatcher =
-        Dispatcher::Create(&context_, options, run_->model_config());
+    Result<std::unique_ptr<Dispatcher>> dispatcher = Dispatcher::Create(
+        &context_, options, ConfigToProto(run_->model_config()));
     ASSERT_TRUE(dispatcher.ok()) << dispatcher.status().ToString();
     dispatcher_ = std::move(dispatcher).value();
     WorkerArgs args;

@@ -11,9 +11,13 @@
 // take others down with it. Malformed input of any kind is logged in one
 // line and survived.
 //
+// The model configuration travels as the protocol's message (v1::Config,
+// made by ConfigToProto): the dispatcher never evaluates, so it does not
+// link the simulator.
+//
 // Not thread-safe: one thread calls Submit and Poll.
-#ifndef ANIMAT_MASTER_DISPATCHER_H_
-#define ANIMAT_MASTER_DISPATCHER_H_
+#ifndef ANIMAT_MASTER_DISPATCH_DISPATCHER_H_
+#define ANIMAT_MASTER_DISPATCH_DISPATCHER_H_
 
 #include <chrono>
 #include <cstdint>
@@ -30,10 +34,9 @@
 #include "common/base/clock.h"
 #include "common/base/log.h"
 #include "common/base/status.h"
-#include "common/evaluation/model_config.h"
 #include "common/protocol/genome_wire.h"
 #include "common/protocol/protocol.h"
-#include "master/work_encoder.h"
+#include "master/dispatch/work_encoder.h"
 
 namespace zmq {
 class context_t;
@@ -95,10 +98,14 @@ struct DispatcherStats {
 
 class Dispatcher {
  public:
-  // Binds the socket. `context` must outlive the dispatcher.
+  // Checks the options (CurveZMQ keys, an endpoint beyond loopback) and
+  // binds the socket: fails, saying why, without binding when they are
+  // wrong, and with kIoError when the endpoint cannot be bound (port in
+  // use). Workers are welcomed with `model`, the model configuration they
+  // evaluate by (ConfigToProto). `context` must outlive the dispatcher.
   static Result<std::unique_ptr<Dispatcher>> Create(zmq::context_t* context,
                                                     DispatcherOptions options,
-                                                    const ModelConfig& config);
+                                                    v1::Config model);
   ~Dispatcher();
 
   // Queues an individual for evaluation; an individual already pending is
@@ -156,7 +163,7 @@ class Dispatcher {
   };
 
   Dispatcher(zmq::context_t* context, DispatcherOptions options,
-             v1::Config config);
+             v1::Config model);
 
   void Receive(std::vector<Completion>* done);
   void Handle(const std::string& identity, const v1::Envelope& envelope,
@@ -222,4 +229,4 @@ class Dispatcher {
 
 }  // namespace animat
 
-#endif  // ANIMAT_MASTER_DISPATCHER_H_
+#endif  // ANIMAT_MASTER_DISPATCH_DISPATCHER_H_

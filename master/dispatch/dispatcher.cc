@@ -1,4 +1,4 @@
-#include "master/dispatcher.h"
+#include "master/dispatch/dispatcher.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "common/protocol/zmq_poll.h"
 #include "common/security/curve_keys.h"
-#include "master/zap_authenticator.h"
+#include "master/dispatch/zap_authenticator.h"
 
 namespace animat {
 namespace {
@@ -23,8 +23,7 @@ int CreditCap(int threads) {
 }  // namespace
 
 Result<std::unique_ptr<Dispatcher>> Dispatcher::Create(
-    zmq::context_t* context, DispatcherOptions options,
-    const ModelConfig& config) {
+    zmq::context_t* context, DispatcherOptions options, v1::Config model) {
   const bool curve = !options.curve_secret_key.empty();
   const bool local = security::IsLocalEndpoint(options.endpoint);
   if (!curve && !local && !options.insecure) {
@@ -41,7 +40,7 @@ Result<std::unique_ptr<Dispatcher>> Dispatcher::Create(
         "allowed worker key");
   }
   std::unique_ptr<Dispatcher> dispatcher(
-      new Dispatcher(context, std::move(options), ConfigToProto(config)));
+      new Dispatcher(context, std::move(options), std::move(model)));
   DispatcherOptions& o = dispatcher->options_;
   if (curve) {
     // The handler must serve the context before the socket binds.
@@ -75,9 +74,9 @@ Result<std::unique_ptr<Dispatcher>> Dispatcher::Create(
 }
 
 Dispatcher::Dispatcher(zmq::context_t* context, DispatcherOptions options,
-                       v1::Config config)
+                       v1::Config model)
     : options_(std::move(options)),
-      config_(std::move(config)),
+      config_(std::move(model)),
       config_hash_(protocol::ConfigHash(config_)),
       socket_(
           std::make_unique<zmq::socket_t>(*context, zmq::socket_type::router)) {
