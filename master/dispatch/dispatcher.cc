@@ -22,11 +22,10 @@ int CreditCap(int threads) {
 
 }  // namespace
 
-Result<std::unique_ptr<Dispatcher>> Dispatcher::Create(
-    zmq::context_t* context, DispatcherOptions options, v1::Config model) {
+Status Dispatcher::CheckOptions(const DispatcherOptions& options) {
   const bool curve = !options.curve_secret_key.empty();
-  const bool local = security::IsLocalEndpoint(options.endpoint);
-  if (!curve && !local && !options.insecure) {
+  if (!curve && !options.insecure &&
+      !security::IsLocalEndpoint(options.endpoint)) {
     return Status::InvalidArgument(
         "listening on " + options.endpoint +
         " reaches beyond this machine: give the master CurveZMQ keys "
@@ -39,6 +38,15 @@ Result<std::unique_ptr<Dispatcher>> Dispatcher::Create(
         "CurveZMQ needs a 40-character Z85 secret key and at least one "
         "allowed worker key");
   }
+  return Status::Ok();
+}
+
+Result<std::unique_ptr<Dispatcher>> Dispatcher::Create(
+    zmq::context_t* context, DispatcherOptions options, v1::Config model) {
+  Status status = CheckOptions(options);
+  if (!status.ok()) return status;
+  const bool curve = !options.curve_secret_key.empty();
+  const bool local = security::IsLocalEndpoint(options.endpoint);
   std::unique_ptr<Dispatcher> dispatcher(
       new Dispatcher(context, std::move(options), std::move(model)));
   DispatcherOptions& o = dispatcher->options_;

@@ -108,6 +108,11 @@ class Dispatcher {
                                                     v1::Config model);
   ~Dispatcher();
 
+  // What Create refuses before binding: an endpoint beyond loopback without
+  // CurveZMQ keys (unless `insecure`), or keys of the wrong form; a
+  // message that says what to give instead.
+  static Status CheckOptions(const DispatcherOptions& options);
+
   // Queues an individual for evaluation; an individual already pending is
   // left as it is. The genome must be valid.
   void Submit(uint64_t individual, const v1::Genome& genome);

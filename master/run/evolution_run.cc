@@ -38,8 +38,8 @@ double NullEvaluationFitness(uint64_t seed, uint64_t id) {
   return RandomStream(seed, id, StreamPurpose::kNullFitness).NextDouble();
 }
 
-Result<std::unique_ptr<EvolutionRun>> EvolutionRun::Start(
-    lineage::Store* store, const RunSettings& settings, LogSink log) {
+Result<RunPlan> EvolutionRun::PlanStart(lineage::Store* store,
+                                        const RunSettings& settings) {
   Result<std::vector<lineage::RunRow>> runs = store->Runs();
   if (!runs.ok()) return runs.status();
   if (!runs->empty()) {
@@ -48,32 +48,19 @@ Result<std::unique_ptr<EvolutionRun>> EvolutionRun::Start(
         ": already holds a run; continue it with --resume, or use another "
         "database");
   }
-  Result<int64_t> run =
-      store->CreateRun(settings.evolution.seed, RunSettingsToProto(settings),
-                       protocol::BuildId());
-  if (!run.ok()) return run.status();
-  log("run " + std::to_string(*run) + " started, seed " +
-      std::to_string(settings.evolution.seed));
-  return std::unique_ptr<EvolutionRun>(
-      new EvolutionRun(store, settings, *run, std::move(log)));
+  RunPlan plan;
+  plan.settings = settings;
+  return plan;
 }
 
-Result<std::unique_ptr<EvolutionRun>> EvolutionRun::Resume(
-    lineage::Store* store, const std::optional<RunSettings>& settings,
-    bool force, std::optional<int> generations, LogSink log) {
-  Result<std::vector<lineage::RunRow>> runs = store->Runs();
-  if (!runs.ok()) return runs.status();
-  if (runs->empty()) {
-    return Status::NotFound(store->path() +
-                            ": no run to resume; start one with --config");
-  }
-  const lineage::RunRow& row = runs->back();
-  RunSettings stored;
-  Status status = RunSettingsFromProto(row.config, &stored);
-  if (!status.ok()) {
-    return status.WithPrefix(store->path() + ": the stored configuration");
-  }
-  // How many generations to run decides no individual: it may change.
+namespace {
+
+// What differs between the settings given and the stored ones, and
+// between this build and the run's, beyond the number of generations
+// (which decides no individual).
+std::vector<std::string> ResumeProblems(
+    const std::optional<RunSettings>& settings, const RunSettings& stored,
+    const lineage::RunRow& row) {
   const auto comparable = [](RunSettings s) {
     s.evolution.generations = 0;
     return protocol::MessageHash(RunSettingsToProto(s));
@@ -87,25 +74,98 @@ Result<std::unique_ptr<EvolutionRun>> EvolutionRun::Resume(
                        "\", this is \"" + protocol::BuildId() +
                        "\" (results could differ in the last bits)");
   }
+  return problems;
+}
+
+}  // namespace
+
+Result<RunPlan> EvolutionRun::PlanResume(
+    lineage::Store* store, const std::optional<RunSettings>& settings,
+    bool force, std::optional<int> generations) {
+  Result<std::vector<lineage::RunRow>> runs = store->Runs();
+  if (!runs.ok()) return runs.status();
+  if (runs->empty()) {
+    return Status::NotFound(store->path() +
+                            ": no run to resume; start one with --config");
+  }
+  const lineage::RunRow& row = runs->back();
+  RunSettings stored;
+  Status status = RunSettingsFromProto(row.config, &stored);
+  if (!status.ok()) {
+    return status.WithPrefix(store->path() + ": the stored configuration");
+  }
+  RunPlan plan;
+  plan.run_id = row.run_id;
+  plan.state = row.state;
+  Result<std::optional<lineage::GenerationRow>> latest =
+      store->LatestGenerationHead(row.run_id);
+  if (!latest.ok()) return latest.status();
+  plan.generations_made = *latest ? (*latest)->generation + 1 : 0;
+  std::vector<std::string> problems = ResumeProblems(settings, stored, row);
   if (!problems.empty() && !force) {
     std::string message = store->path() + ": refusing to resume:";
     for (const std::string& p : problems) message += " " + p + ";";
     return Status::InvalidArgument(message + " --force resumes anyway");
   }
-  for (const std::string& p : problems) log("resuming anyway (--force): " + p);
-  RunSettings use = settings && force ? *settings : stored;
-  if (generations) use.evolution.generations = *generations;
-  if (use.evolution.generations != stored.evolution.generations ||
-      problems.size() > 0) {
+  plan.settings = settings && force ? *settings : stored;
+  if (generations) plan.settings.evolution.generations = *generations;
+  plan.update_config =
+      plan.settings.evolution.generations != stored.evolution.generations ||
+      !problems.empty();
+  plan.forced = std::move(problems);
+  return plan;
+}
+
+Result<std::unique_ptr<EvolutionRun>> EvolutionRun::Begin(lineage::Store* store,
+                                                          const RunPlan& plan,
+                                                          LogSink log) {
+  if (plan.run_id == 0) {
+    Result<int64_t> run = store->CreateRun(plan.settings.evolution.seed,
+                                           RunSettingsToProto(plan.settings),
+                                           protocol::BuildId());
+    if (!run.ok()) return run.status();
+    log("run " + std::to_string(*run) + " started, seed " +
+        std::to_string(plan.settings.evolution.seed));
+    return std::unique_ptr<EvolutionRun>(
+        new EvolutionRun(store, plan.settings, *run, std::move(log)));
+  }
+  // Rewriting the run's generations below what it has made would end it
+  // at once and misstate it.
+  if (plan.update_config &&
+      plan.settings.evolution.generations < plan.generations_made) {
+    return Status::InvalidArgument(
+        store->path() + ": run " + std::to_string(plan.run_id) + " has made " +
+        std::to_string(plan.generations_made) + " generations, more than the " +
+        std::to_string(plan.settings.evolution.generations) + " asked for");
+  }
+  for (const std::string& p : plan.forced) {
+    log("resuming anyway (--force): " + p);
+  }
+  if (plan.update_config) {
     // The run's recorded configuration and build are what it now runs
     // with (so the next resume by this build needs no --force).
-    status = store->UpdateRunConfig(row.run_id, RunSettingsToProto(use),
-                                    protocol::BuildId());
+    Status status = store->UpdateRunConfig(
+        plan.run_id, RunSettingsToProto(plan.settings), protocol::BuildId());
     if (!status.ok()) return status;
   }
-  log("resuming run " + std::to_string(row.run_id));
+  log("resuming run " + std::to_string(plan.run_id));
   return std::unique_ptr<EvolutionRun>(
-      new EvolutionRun(store, use, row.run_id, std::move(log)));
+      new EvolutionRun(store, plan.settings, plan.run_id, std::move(log)));
+}
+
+Result<std::unique_ptr<EvolutionRun>> EvolutionRun::Start(
+    lineage::Store* store, const RunSettings& settings, LogSink log) {
+  Result<RunPlan> plan = PlanStart(store, settings);
+  if (!plan.ok()) return plan.status();
+  return Begin(store, *plan, std::move(log));
+}
+
+Result<std::unique_ptr<EvolutionRun>> EvolutionRun::Resume(
+    lineage::Store* store, const std::optional<RunSettings>& settings,
+    bool force, std::optional<int> generations, LogSink log) {
+  Result<RunPlan> plan = PlanResume(store, settings, force, generations);
+  if (!plan.ok()) return plan.status();
+  return Begin(store, *plan, std::move(log));
 }
 
 Status EvolutionRun::Submit(const std::vector<lineage::NewIndividual>& made,

@@ -53,19 +53,50 @@ struct GenerationReport {
   double seconds_left = -1;  // Estimate; -1 when unknown.
 };
 
+// What starting a run, or continuing the store's run, will do: decided by
+// reading the store only (EvolutionRun::PlanStart, PlanResume), so that a
+// start-up that fails after planning (a port in use) leaves the store as
+// it was; EvolutionRun::Begin then writes it.
+struct RunPlan {
+  int64_t run_id = 0;    // The run to continue; 0 for a new run.
+  RunSettings settings;  // What the run runs with.
+  // Of the run to continue: its state ("running" or "finished") and the
+  // generations it has made.
+  std::string state;
+  int generations_made = 0;
+  // The run's recorded configuration and build are replaced by `settings`
+  // and this build (an extended run, or --force).
+  bool update_config = false;
+  std::vector<std::string> forced;  // What --force overrides, for the log.
+};
+
 class EvolutionRun {
  public:
-  // A new run in `store` (which must hold none). The store must outlive
-  // the run.
-  static Result<std::unique_ptr<EvolutionRun>> Start(
-      lineage::Store* store, const RunSettings& settings,
-      LogSink log = Prefixed("master", StderrSink));
-
+  // A new run in `store`, which must hold none (kInvalidArgument
+  // otherwise, saying so).
+  static Result<RunPlan> PlanStart(lineage::Store* store,
+                                   const RunSettings& settings);
   // Continues the store's run. Refuses, saying why, when `settings` is
   // given and differs from the stored configuration, or when the store was
   // written by another simulator build, unless `force`. `generations`, when
   // set, replaces the run's number of generations (to extend a finished
   // run).
+  static Result<RunPlan> PlanResume(lineage::Store* store,
+                                    const std::optional<RunSettings>& settings,
+                                    bool force, std::optional<int> generations);
+  // Carries out `plan` (made for `store`): creates the run, or updates its
+  // recorded configuration as planned. Refuses to record fewer generations
+  // than the run has made (kInvalidArgument). The store must outlive the
+  // run.
+  static Result<std::unique_ptr<EvolutionRun>> Begin(
+      lineage::Store* store, const RunPlan& plan,
+      LogSink log = Prefixed("master", StderrSink));
+
+  // PlanStart, then Begin.
+  static Result<std::unique_ptr<EvolutionRun>> Start(
+      lineage::Store* store, const RunSettings& settings,
+      LogSink log = Prefixed("master", StderrSink));
+  // PlanResume, then Begin.
   static Result<std::unique_ptr<EvolutionRun>> Resume(
       lineage::Store* store, const std::optional<RunSettings>& settings,
       bool force, std::optional<int> generations,
