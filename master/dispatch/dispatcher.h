@@ -36,6 +36,7 @@
 #include "common/base/status.h"
 #include "common/protocol/genome_wire.h"
 #include "common/protocol/protocol.h"
+#include "master/dispatch/evaluation_service.h"
 #include "master/dispatch/work_encoder.h"
 
 namespace zmq {
@@ -75,18 +76,6 @@ struct DispatcherOptions {
   const Clock* clock = &RealClock();
 };
 
-// An individual whose evaluation ended.
-struct Completion {
-  uint64_t individual = 0;
-  v1::EvaluationResult result;
-  std::string worker;       // "host:pid" of the worker that evaluated it.
-  double wall_seconds = 0;  // On the worker.
-  int attempts = 0;         // Dispatches that ended without a result.
-  // From a worker in null-evaluation mode (accept_null_workers only): the
-  // result is NOT_EVALUATED and nothing was simulated.
-  bool null_evaluation = false;
-};
-
 struct DispatcherStats {
   int64_t dispatched = 0;  // Items sent (re-sends counted again).
   int64_t completed = 0;   // Individuals completed with a result.
@@ -96,7 +85,7 @@ struct DispatcherStats {
   int64_t refused = 0;     // Workers refused.
 };
 
-class Dispatcher {
+class Dispatcher final : public EvaluationService {
  public:
   // Checks the options (CurveZMQ keys, an endpoint beyond loopback) and
   // binds the socket: fails, saying why, without binding when they are
@@ -106,7 +95,7 @@ class Dispatcher {
   static Result<std::unique_ptr<Dispatcher>> Create(zmq::context_t* context,
                                                     DispatcherOptions options,
                                                     v1::Config model);
-  ~Dispatcher();
+  ~Dispatcher() override;
 
   // What Create refuses before binding: an endpoint beyond loopback without
   // CurveZMQ keys (unless `insecure`), or keys of the wrong form; a
@@ -115,24 +104,25 @@ class Dispatcher {
 
   // Queues an individual for evaluation; an individual already pending is
   // left as it is. The genome must be valid.
-  void Submit(uint64_t individual, const v1::Genome& genome);
+  void Submit(uint64_t individual, const v1::Genome& genome) override;
   // The same with the genome serialised (protocol::SerializeGenome), as
   // the caller may already have it.
-  void Submit(uint64_t individual, const protocol::SerializedGenome& genome);
+  void Submit(uint64_t individual,
+              const protocol::SerializedGenome& genome) override;
 
   // Serves workers for up to `timeout_ms` (of the clock's time) and returns
   // the completions that came in, as soon as there are some.
-  std::vector<Completion> Poll(int timeout_ms);
+  std::vector<Completion> Poll(int timeout_ms) override;
 
   // Tells the workers that delivered these completions' results that they
   // may forget them (with acknowledge_on_receipt off; otherwise, and for
   // individuals not completed here or already acknowledged, nothing). A
   // worker that has gone since is not told; it sends the result again to
   // the next master, which ignores it once recorded.
-  void Acknowledge(const std::vector<uint64_t>& individuals);
+  void Acknowledge(const std::vector<uint64_t>& individuals) override;
 
   // Individuals submitted and not completed.
-  size_t pending() const { return pending_.size(); }
+  size_t pending() const override { return pending_.size(); }
   // Workers currently greeted.
   size_t workers() const { return workers_.size(); }
   const DispatcherStats& stats() const { return stats_; }
@@ -140,7 +130,7 @@ class Dispatcher {
   // The endpoint actually bound ("tcp://127.0.0.1:41234" for a ":*" port).
   const std::string& endpoint() const { return endpoint_; }
   // DispatcherOptions::clock.
-  const Clock& clock() const { return *options_.clock; }
+  const Clock& clock() const override { return *options_.clock; }
 
  private:
   using TimePoint = Clock::TimePoint;

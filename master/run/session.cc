@@ -111,9 +111,8 @@ Result<RunPlan> Plan(lineage::Store* store, const SessionOptions& o,
                                      " holds no run: --config is needed");
     }
   }
-  if (!resume) return EvolutionRun::PlanStart(store, *settings);
-  Result<RunPlan> plan =
-      EvolutionRun::PlanResume(store, settings, o.force, o.generations);
+  if (!resume) return PlanStart(store, *settings);
+  Result<RunPlan> plan = PlanResume(store, settings, o.force, o.generations);
   if (!plan.ok()) return plan;
   // --generations counts them all: fewer than the run has made runs
   // nothing (and must not rewrite the run's configuration).
