@@ -38,7 +38,7 @@
 #include "common/genome/genome_proto.h"
 #include "common/io/proto_file.h"
 #include "common/protocol/protocol.h"
-#include "master/dispatcher.h"
+#include "master/dispatch/dispatcher.h"
 
 namespace animat {
 namespace {
@@ -77,8 +77,8 @@ std::unique_ptr<Dispatcher> MakeDispatcher(zmq::context_t* context,
   dispatcher_options.endpoint = "tcp://127.0.0.1:*";
   dispatcher_options.accept_null_workers = accept_null_workers;
   if (!options.verbose) dispatcher_options.log = [](std::string_view) {};
-  Result<std::unique_ptr<Dispatcher>> dispatcher =
-      Dispatcher::Create(context, dispatcher_options, ModelConfig{});
+  Result<std::unique_ptr<Dispatcher>> dispatcher = Dispatcher::Create(
+      context, dispatcher_options, ConfigToProto(ModelConfig{}));
   if (!dispatcher.ok()) {
     std::fprintf(stderr, "%s\n", dispatcher.status().ToString().c_str());
     return nullptr;

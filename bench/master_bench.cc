@@ -14,10 +14,10 @@
 // come back over ZeroMQ and are recorded in batched transactions. Null
 // workers simulate nothing, so the figure is what the master sustains.
 //
-// Null results carry no fitness: the run scores them with
-// EvolutionRun::ScoreNullEvaluations (no command line reaches it), which
-// records each as OK with a pseudo-random fitness of the seed and id, by
-// the same store write as a real result. So the initial population is the
+// Null results carry no fitness: the run is served through
+// bench/null_scoring.h, which scores each as OK with a pseudo-random
+// fitness of the seed and id, recorded by the same store write as a real
+// result. So the initial population is the
 // first P candidates and every later generation is selected, varied, made
 // and recorded as in a real run.
 //
@@ -43,9 +43,10 @@
 #include <google/protobuf/stubs/logging.h>
 #include <CLI/CLI.hpp>
 
+#include "bench/null_scoring.h"
 #include "bench/timing.h"
 #include "bench/worker_processes.h"
-#include "master/dispatcher.h"
+#include "master/dispatch/dispatcher.h"
 #include "master/lineage/queries.h"
 #include "master/lineage/store.h"
 #include "master/run/evolution_run.h"
@@ -133,8 +134,8 @@ Result<Counts> Verify(const std::string& path, int64_t run,
   if (!scores.ok()) return scores.status();
   int64_t wrong = 0;
   for (const lineage::Score& score : *scores) {
-    wrong += score.fitness &&
-             *score.fitness != NullEvaluationFitness(options.seed, score.id);
+    wrong += score.fitness && *score.fitness != bench::NullEvaluationFitness(
+                                                    options.seed, score.id);
   }
   expect("individuals with another fitness than their own", wrong, 0);
 
@@ -192,7 +193,6 @@ int Bench(const Options& options) {
     std::fprintf(stderr, "%s\n", run.status().ToString().c_str());
     return 1;
   }
-  (*run)->ScoreNullEvaluations();
   const int64_t run_id = (*run)->run_id();
 
   zmq::context_t context(1);
@@ -203,8 +203,8 @@ int Bench(const Options& options) {
   dispatcher_options.heartbeat_ms = options.heartbeat_ms;
   dispatcher_options.log =
       options.verbose ? Prefixed("dispatcher", StderrSink) : quiet;
-  Result<std::unique_ptr<Dispatcher>> dispatcher =
-      Dispatcher::Create(&context, dispatcher_options, (*run)->model_config());
+  Result<std::unique_ptr<Dispatcher>> dispatcher = Dispatcher::Create(
+      &context, dispatcher_options, ConfigToProto((*run)->model_config()));
   if (!dispatcher.ok()) {
     std::fprintf(stderr, "%s\n", dispatcher.status().ToString().c_str());
     return 1;
@@ -218,8 +218,9 @@ int Bench(const Options& options) {
   const std::atomic<bool> stop{false};
   const double cpu = CpuSeconds(RUSAGE_SELF);
   const Clock::time_point start = Clock::now();
+  bench::NullScoring scoring(dispatcher->get(), options.seed);
   const Status status = (*run)->Run(
-      dispatcher->get(), stop,
+      &scoring, stop,
       [&](const GenerationReport&) { ends.push_back(SecondsSince(start)); });
   const double seconds = SecondsSince(start);
   const double master_cpu = CpuSeconds(RUSAGE_SELF) - cpu;

@@ -1,25 +1,24 @@
-// Real animat-worker processes for the benchmarks, started with
-// posix_spawn beside an in-process Dispatcher and stopped with SIGTERM
-// (then SIGKILL after 5 s) when Stop is called or the object is destroyed.
+// Real animat-worker processes for the benchmarks (master/run/local_workers.h)
+// beside an in-process Dispatcher, which is served while they join and
+// while they say goodbye; stopped with SIGTERM (then SIGKILL after 5 s)
+// when Stop is called or the object is destroyed.
 //
 // Not thread-safe: the thread that serves the dispatcher uses it. The
 // dispatcher must outlive the object.
 #ifndef ANIMAT_BENCH_WORKER_PROCESSES_H_
 #define ANIMAT_BENCH_WORKER_PROCESSES_H_
 
-#include <sys/types.h>
-
 #include <string>
-#include <vector>
 
-#include "master/dispatcher.h"
+#include "master/dispatch/dispatcher.h"
+#include "master/run/local_workers.h"
 
 namespace animat::bench {
 
 class WorkerProcesses {
  public:
-  // `binary`: the animat-worker to run; its standard error is appended to
-  // `log` (a path; "/dev/null" discards it).
+  // `binary`: the animat-worker to run; its output is appended to `log` (a
+  // path; "/dev/null" discards it).
   WorkerProcesses(std::string binary, std::string log, Dispatcher* dispatcher);
   ~WorkerProcesses() { Stop(); }
   WorkerProcesses(const WorkerProcesses&) = delete;
@@ -39,7 +38,7 @@ class WorkerProcesses {
   std::string binary_;
   std::string log_;
   Dispatcher* dispatcher_;
-  std::vector<pid_t> pids_;
+  LocalWorkers workers_;
 };
 
 }  // namespace animat::bench

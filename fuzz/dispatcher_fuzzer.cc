@@ -24,7 +24,7 @@
 #include "common/evaluation/model_config.h"
 #include "common/protocol/protocol.h"
 #include "fuzz/fuzz_common.h"
-#include "master/dispatcher.h"
+#include "master/dispatch/dispatcher.h"
 
 namespace animat::fuzz {
 namespace {
@@ -46,7 +46,7 @@ class Harness {
       if (line.find(expected_join_) != std::string_view::npos) joined_ = true;
     };
     Result<std::unique_ptr<Dispatcher>> created =
-        Dispatcher::Create(&context_, options, ModelConfig{});
+        Dispatcher::Create(&context_, options, ConfigToProto(ModelConfig{}));
     if (!created.ok()) Fail(created.status().ToString());
     dispatcher_ = std::move(created).value();
     for (zmq::socket_t* peer : {&worker_, &stranger_}) {

@@ -1,5 +1,6 @@
-// A real program run by an end-to-end test: started with posix_spawn in a
-// process group of its own, signalled with kill(2), reaped with waitpid.
+// A real program run by an end-to-end test: started by the project's
+// spawner (master/run/local_workers.h) in a process group of its own,
+// signalled with kill(2), reaped with waitpid.
 //
 // The destructor kills (SIGKILL) the group of a process still running and
 // reaps it, so no test leaks a process (nor the processes it started) even
@@ -11,29 +12,21 @@
 #ifndef ANIMAT_TESTS_CHILD_PROCESS_H_
 #define ANIMAT_TESTS_CHILD_PROCESS_H_
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/types.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <gtest/gtest.h>
 
-#include <cerrno>
 #include <chrono>
-#include <csignal>
 #include <cstdio>
-#include <cstring>
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <utility>
 #include <vector>
 
-extern char** environ;
+#include "master/run/local_workers.h"
 
 namespace animat::testing {
 
@@ -55,44 +48,30 @@ class ChildProcess {
                              std::to_string(++counter);
     stdout_path_ = stem + ".out";
     stderr_path_ = stem + ".err";
-    std::vector<char*> pointers;
-    for (std::string& a : argv) pointers.push_back(a.data());
-    pointers.push_back(nullptr);
-
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO,
-                                     stdout_path_.c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO,
-                                     stderr_path_.c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawnattr_t attributes;
-    posix_spawnattr_init(&attributes);
-    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
-    posix_spawnattr_setpgroup(&attributes, 0);  // A group of its own.
-    const int error = posix_spawn(&pid_, argv[0].c_str(), &actions, &attributes,
-                                  pointers.data(), environ);
-    posix_spawnattr_destroy(&attributes);
-    posix_spawn_file_actions_destroy(&actions);
-    if (error != 0) {
-      ADD_FAILURE() << "posix_spawn " << argv[0] << ": " << strerror(error);
-      pid_ = -1;
+    ProcessOptions options;
+    options.argv = std::move(argv);
+    options.stdout_path = stdout_path_;
+    options.stderr_path = stderr_path_;
+    options.truncate = true;
+    options.own_process_group = true;
+    Result<std::unique_ptr<LocalProcess>> process =
+        LocalProcess::Start(options);
+    if (process.ok()) {
+      process_ = std::move(process).value();
+      pid_ = process_->pid();
+    } else {
+      ADD_FAILURE() << process.status().message();
     }
   }
 
   virtual ~ChildProcess() {
-    if (pid_ > 0 && !reaped_) {
-      if (Reap(WNOHANG) && !signalled_ && lifetime_ == Lifetime::kStaysUp) {
-        ADD_FAILURE() << label_ << " " << pid_
-                      << " exited by itself: " << Describe() << "\n"
-                      << output();
-      }
-      if (!reaped_) {
-        kill(-pid_, SIGKILL);  // It and whatever it started.
-        Reap(0);
-      }
+    if (process_ != nullptr && process_->Exited() && !signalled_ &&
+        lifetime_ == Lifetime::kStaysUp) {
+      ADD_FAILURE() << label_ << " " << pid_
+                    << " exited by itself: " << Describe() << "\n"
+                    << output();
     }
+    process_.reset();  // Killed (with its group) and reaped if running.
     const std::string text = output();
     if (text.find("Sanitizer") != std::string::npos ||
         text.find("runtime error:") != std::string::npos) {
@@ -109,20 +88,20 @@ class ChildProcess {
   ChildProcess(const ChildProcess&) = delete;
   ChildProcess& operator=(const ChildProcess&) = delete;
 
-  bool started() const { return pid_ > 0; }
+  bool started() const { return process_ != nullptr; }
   pid_t pid() const { return pid_; }
   const std::string& label() const { return label_; }
 
   // Sends `signal` to the process (not its group); the test then expects
   // whatever it does (no failure if the process exits).
   bool Signal(int signal) {
-    if (pid_ <= 0 || reaped_) return false;
+    if (process_ == nullptr) return false;
     signalled_ = true;
-    return kill(pid_, signal) == 0;
+    return process_->Signal(signal);
   }
 
   // True while the process has not exited (reaps it if it has).
-  bool Running() { return pid_ > 0 && !reaped_ && !Reap(WNOHANG); }
+  bool Running() { return process_ != nullptr && !process_->Exited(); }
 
   // Waits up to `timeout` for the process to exit, calling `between`
   // about every 10 ms (or sleeping). True if it exited; then exit_code()
@@ -139,21 +118,15 @@ class ChildProcess {
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
       }
     }
-    return reaped_;
+    return process_ != nullptr;
   }
 
   // After an exit: the code it exited with, or -1 if a signal ended it.
-  int exit_code() const {
-    return reaped_ && WIFEXITED(status_) ? WEXITSTATUS(status_) : -1;
-  }
+  int exit_code() const { return process_ ? process_->exit_code() : -1; }
   // After an exit: the signal that ended it, or 0.
-  int term_signal() const {
-    return reaped_ && WIFSIGNALED(status_) ? WTERMSIG(status_) : 0;
-  }
+  int term_signal() const { return process_ ? process_->term_signal() : 0; }
   std::string Describe() const {
-    if (!reaped_) return "running";
-    if (WIFEXITED(status_)) return "exit code " + std::to_string(exit_code());
-    return std::string("signal ") + strsignal(term_signal());
+    return process_ ? process_->Describe() : "not started";
   }
 
   // What it wrote to standard output so far.
@@ -171,24 +144,12 @@ class ChildProcess {
     return text.str();
   }
 
-  // True if the process has exited (and is now reaped).
-  bool Reap(int flags) {
-    if (reaped_) return true;
-    pid_t got;
-    do {
-      got = waitpid(pid_, &status_, flags);
-    } while (got < 0 && errno == EINTR);
-    if (got == pid_) reaped_ = true;
-    return reaped_;
-  }
-
   std::string label_;
   Lifetime lifetime_;
+  std::unique_ptr<LocalProcess> process_;
   pid_t pid_ = -1;
   std::string stdout_path_;
   std::string stderr_path_;
-  int status_ = 0;
-  bool reaped_ = false;
   bool signalled_ = false;
 };
 

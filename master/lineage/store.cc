@@ -485,43 +485,71 @@ Result<uint64_t> Store::NextId(int64_t run) {
 Status Store::AddGeneration(int64_t run, int generation,
                             const std::vector<uint64_t>& members,
                             const std::vector<NewIndividual>& individuals) {
-  return AddGeneration(
-      run, generation, members, individuals.size(),
-      [&](size_t i) -> const NewIndividual& { return individuals[i]; });
+  Result<std::unique_ptr<GenerationWrite>> write =
+      BeginGeneration(run, generation, members);
+  if (!write.ok()) return write.status();
+  Status status = (*write)->Add(individuals);
+  if (!status.ok()) return status;
+  return (*write)->Commit();
 }
 
-Status Store::AddGeneration(
-    int64_t run, int generation, const std::vector<uint64_t>& members,
-    size_t count,
-    const std::function<const NewIndividual&(size_t)>& individual) {
-  return InTransaction(*db_, [&]() -> Status {
-    const std::string now = UtcNow();
-    for (size_t i = 0; i < count; ++i) {
-      Status status = InsertIndividual(run, individual(i), now);
-      if (!status.ok()) return status;
-    }
-    Result<sql::Statement> insert = db_->Cached(
-        "INSERT INTO generations (run_id, generation, size, created_at)"
-        " VALUES (?, ?, ?, ?)");
-    if (!insert.ok()) return insert.status();
-    insert->Bind(1, run)
-        .Bind(2, static_cast<int64_t>(generation))
-        .Bind(3, static_cast<int64_t>(members.size()))
-        .Bind(4, now);
-    Status status = insert->Run();
-    if (!status.ok()) return status;
-    Result<sql::Statement> member = db_->Cached(
-        "INSERT INTO members (run_id, generation, id) VALUES (?, ?, ?)");
-    if (!member.ok()) return member.status();
-    for (uint64_t id : members) {
-      member->Bind(1, run)
-          .Bind(2, static_cast<int64_t>(generation))
-          .Bind(3, static_cast<int64_t>(id));
-      status = member->Run();
-      if (!status.ok()) return status;
-    }
-    return Status::Ok();
-  });
+Result<std::unique_ptr<GenerationWrite>> Store::BeginGeneration(
+    int64_t run, int generation, std::vector<uint64_t> members) {
+  Status status = db_->Execute("BEGIN IMMEDIATE");
+  if (!status.ok()) return status;
+  return std::unique_ptr<GenerationWrite>(
+      new GenerationWrite(this, run, generation, std::move(members), UtcNow()));
+}
+
+GenerationWrite::~GenerationWrite() {
+  if (open_) (void)store_->db_->Execute("ROLLBACK");
+}
+
+Status GenerationWrite::Fail(Status status) {
+  if (open_) (void)store_->db_->Execute("ROLLBACK");
+  open_ = false;
+  failed_ = status;
+  return status;
+}
+
+Status GenerationWrite::Add(const std::vector<NewIndividual>& offspring) {
+  if (!open_) return failed_;
+  for (const NewIndividual& n : offspring) {
+    Status status = store_->InsertIndividual(run_, n, now_);
+    if (!status.ok()) return Fail(status);
+  }
+  return Status::Ok();
+}
+
+Status GenerationWrite::Commit() {
+  if (!open_) return failed_;
+  sql::Database& db = *store_->db_;
+  Result<sql::Statement> insert = db.Cached(
+      "INSERT INTO generations (run_id, generation, size, created_at)"
+      " VALUES (?, ?, ?, ?)");
+  if (!insert.ok()) return Fail(insert.status());
+  insert->Bind(1, run_)
+      .Bind(2, static_cast<int64_t>(generation_))
+      .Bind(3, static_cast<int64_t>(members_.size()))
+      .Bind(4, now_);
+  Status status = insert->Run();
+  if (!status.ok()) return Fail(status);
+  Result<sql::Statement> member = db.Cached(
+      "INSERT INTO members (run_id, generation, id) VALUES (?, ?, ?)");
+  if (!member.ok()) return Fail(member.status());
+  for (uint64_t id : members_) {
+    member->Bind(1, run_)
+        .Bind(2, static_cast<int64_t>(generation_))
+        .Bind(3, static_cast<int64_t>(id));
+    status = member->Run();
+    if (!status.ok()) return Fail(status);
+  }
+  status = db.Execute("COMMIT");
+  if (!status.ok()) return Fail(status);
+  open_ = false;
+  failed_ = Status::Internal("generation " + std::to_string(generation_) +
+                             " already committed");
+  return Status::Ok();
 }
 
 Status Store::CompleteGeneration(int64_t run, int generation,

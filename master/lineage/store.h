@@ -14,7 +14,6 @@
 #define ANIMAT_MASTER_LINEAGE_STORE_H_
 
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -104,6 +103,8 @@ struct GenerationStats {
   std::optional<double> best, mean, median;
 };
 
+class GenerationWrite;
+
 class Store {
  public:
   // Opens or creates the store at `path` ("" or ":memory:" for a private
@@ -168,15 +169,10 @@ class Store {
   Status AddGeneration(int64_t run, int generation,
                        const std::vector<uint64_t>& members,
                        const std::vector<NewIndividual>& individuals = {});
-  // The same, with the `count` individuals given one at a time by
-  // `individual(i)`, i = 0, 1, ..., count - 1 in order, called on this
-  // thread while the transaction is open (it may wait for a producer that
-  // makes them meanwhile); the reference must stay valid until the next
-  // call.
-  Status AddGeneration(
-      int64_t run, int generation, const std::vector<uint64_t>& members,
-      size_t count,
-      const std::function<const NewIndividual&(size_t)>& individual);
+  // The same in parts (GenerationWrite): the offspring in chunks as they
+  // are made, then the generation, in one transaction begun here.
+  Result<std::unique_ptr<GenerationWrite>> BeginGeneration(
+      int64_t run, int generation, std::vector<uint64_t> members);
   Status CompleteGeneration(int64_t run, int generation,
                             const std::vector<uint64_t>& ranked,
                             const GenerationStats& stats);
@@ -192,6 +188,7 @@ class Store {
   // StoreTestPeer (tests/lineage/store_test_peer.h).
   friend class StoreAccess;
   friend class StoreTestPeer;
+  friend class GenerationWrite;
   sql::Database& database() { return *db_; }
 
   Store(std::unique_ptr<sql::Database> db, int lock_fd)
@@ -203,6 +200,43 @@ class Store {
 
   std::unique_ptr<sql::Database> db_;
   int lock_fd_;  // flock()ed "<path>.lock", -1 for in-memory stores.
+};
+
+// A generation being written (Store::BeginGeneration): its offspring in
+// chunks (Add), then the generation and its members (Commit), all in one
+// transaction, so a generation and the offspring it needs appear together
+// or not at all. Between calls the caller may do other work (serve its
+// workers), but must not use the store otherwise; the store calls nothing
+// back. Destroyed without a successful Commit, it rolls back. After a
+// failure, every later call returns that failure.
+class GenerationWrite {
+ public:
+  ~GenerationWrite();
+  GenerationWrite(const GenerationWrite&) = delete;
+  GenerationWrite& operator=(const GenerationWrite&) = delete;
+
+  Status Add(const std::vector<NewIndividual>& offspring);
+  Status Commit();
+
+ private:
+  friend class Store;
+  GenerationWrite(Store* store, int64_t run, int generation,
+                  std::vector<uint64_t> members, std::string now)
+      : store_(store),
+        run_(run),
+        generation_(generation),
+        members_(std::move(members)),
+        now_(std::move(now)) {}
+  // Rolls back after a failure; returns it.
+  Status Fail(Status status);
+
+  Store* store_;
+  int64_t run_;
+  int generation_;
+  std::vector<uint64_t> members_;
+  std::string now_;  // Every row's time stamp.
+  bool open_ = true;
+  Status failed_;
 };
 
 // 16 lowercase hex digits.

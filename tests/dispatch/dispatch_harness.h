@@ -45,7 +45,7 @@
 #include "common/io/proto_file.h"
 #include "common/protocol/genome_wire.h"
 #include "common/protocol/protocol.h"
-#include "master/dispatcher.h"
+#include "master/dispatch/dispatcher.h"
 #include "tests/dispatch/fake_peers.h"
 #include "tests/dispatch/worker_process.h"
 #include "tests/test_util.h"
@@ -291,7 +291,7 @@ class DispatchTest : public ::testing::Test {
     const auto end = Steady::now() + kShortWait;
     for (;;) {
       Result<std::unique_ptr<Dispatcher>> created =
-          Dispatcher::Create(&context_, options, config_);
+          Dispatcher::Create(&context_, options, ConfigToProto(config_));
       if (created.ok()) {
         dispatcher_ = std::move(created).value();
         return true;

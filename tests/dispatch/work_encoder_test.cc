@@ -1,7 +1,7 @@
 // Work envelopes assembled from items serialised once (master/work_encoder):
 // byte for byte what protobuf gives for the same messages, so workers read
 // them as any other.
-#include "master/work_encoder.h"
+#include "master/dispatch/work_encoder.h"
 
 #include <gtest/gtest.h>
 

@@ -8,44 +8,33 @@
 #include <unistd.h>
 
 #include <string>
-#include <vector>
 
+#include "master/run/local_workers.h"
 #include "tests/child_process.h"
 
 namespace animat::testing {
 
-struct WorkerArgs {
-  std::string endpoint;  // The master's.
-  int threads = 1;
-  int heartbeat_ms = 100;  // Until the master's welcome sets its own.
-  bool null_evaluation = false;
+// A test worker's options (master/run/local_workers.h): the animat-worker
+// of ANIMAT_BIN_DIR, with a 100 ms heartbeat until the master's welcome
+// sets its own.
+struct WorkerArgs : WorkerOptions {
+  WorkerArgs() {
+    binary = std::string(ANIMAT_BIN_DIR) + "/animat-worker";
+    heartbeat_ms = 100;
+  }
 };
 
 class WorkerProcess : public ChildProcess {
  public:
   // Starts ANIMAT_BIN_DIR/animat-worker; started() says whether it worked.
   explicit WorkerProcess(const WorkerArgs& args)
-      : ChildProcess("animat-worker", Argv(args), Lifetime::kStaysUp) {}
+      : ChildProcess("animat-worker", WorkerArgv(args), Lifetime::kStaysUp) {}
 
   // "host:pid", as the dispatcher names the worker.
   std::string name() const {
     char host[256] = {};
     gethostname(host, sizeof(host) - 1);
     return std::string(host) + ":" + std::to_string(pid());
-  }
-
- private:
-  static std::vector<std::string> Argv(const WorkerArgs& args) {
-    std::vector<std::string> argv = {
-        std::string(ANIMAT_BIN_DIR) + "/animat-worker",
-        "--connect",
-        args.endpoint,
-        "--threads",
-        std::to_string(args.threads),
-        "--heartbeat-ms",
-        std::to_string(args.heartbeat_ms)};
-    if (args.null_evaluation) argv.push_back("--null-evaluation");
-    return argv;
   }
 };
 

@@ -1,5 +1,5 @@
-// Generations in the lineage store: AddGeneration, CompleteGeneration,
-// Generation, LatestGeneration.
+// Generations in the lineage store: AddGeneration, the same in parts
+// (BeginGeneration), CompleteGeneration, Generation, LatestGeneration.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -19,6 +19,7 @@ using ::animat::testing::MakeIndividual;
 using ::animat::testing::MakeRun;
 using ::animat::testing::MemoryStore;
 using ::animat::testing::Rows;
+using ::animat::testing::TempStorePath;
 using ::animat::testing::Value;
 
 using Table = std::vector<std::vector<std::string>>;
@@ -108,6 +109,89 @@ TEST_F(GenerationsTest, AddGenerationIsAtomicWhenTheGenerationExists) {
   Result<GenerationRow> g = store_->Generation(run_, 0);
   ASSERT_TRUE(g.ok());
   EXPECT_EQ(g->members, (std::vector<uint64_t>{0, 1}));
+}
+
+TEST_F(GenerationsTest, AGenerationWrittenInPartsIsTheGenerationAtOnce) {
+  ASSERT_TRUE(store_->AddGeneration(run_, 0, {0, 1}).ok());
+  Result<std::unique_ptr<GenerationWrite>> write =
+      store_->BeginGeneration(run_, 1, {0, 4, 5});
+  ASSERT_TRUE(write.ok()) << write.status().ToString();
+  ASSERT_TRUE(
+      (*write)->Add({MakeIndividual(4, 1, {0, 1}, {"crossover"})}).ok());
+  ASSERT_TRUE((*write)->Add({}).ok());
+  ASSERT_TRUE((*write)->Add({MakeIndividual(5, 1, {1}, {"sign"})}).ok());
+  ASSERT_TRUE((*write)->Commit().ok());
+  EXPECT_FALSE((*write)->Commit().ok()) << "committed once only";
+  write->reset();
+
+  Result<GenerationRow> g = store_->Generation(run_, 1);
+  ASSERT_TRUE(g.ok()) << g.status().ToString();
+  EXPECT_EQ(g->members, (std::vector<uint64_t>{0, 4, 5}));
+  Result<IndividualRow> child = store_->Individual(run_, 4);
+  ASSERT_TRUE(child.ok()) << child.status().ToString();
+  EXPECT_EQ(child->parents, (std::vector<uint64_t>{0, 1}));
+  // One time stamp for the generation and its offspring.
+  EXPECT_EQ(Value(*store_,
+                  "SELECT COUNT(DISTINCT created_at) FROM (SELECT created_at"
+                  " FROM births WHERE generation = 1 UNION ALL SELECT"
+                  " created_at FROM generations WHERE generation = 1)"),
+            "1");
+}
+
+TEST_F(GenerationsTest, AGenerationWriteNotCommittedLeavesNothing) {
+  {
+    Result<std::unique_ptr<GenerationWrite>> write =
+        store_->BeginGeneration(run_, 0, {0, 6});
+    ASSERT_TRUE(write.ok()) << write.status().ToString();
+    ASSERT_TRUE((*write)->Add({MakeIndividual(6, 0, {0})}).ok());
+  }
+  EXPECT_EQ(Value(*store_, "SELECT COUNT(*) FROM generations"), "0");
+  EXPECT_EQ(Value(*store_, "SELECT COUNT(*) FROM individuals WHERE id = 6"),
+            "0");
+  EXPECT_EQ(Value(*store_, "SELECT COUNT(*) FROM parents"), "0");
+  // The store goes on as before.
+  EXPECT_TRUE(store_->AddGeneration(run_, 0, {0, 1}).ok());
+}
+
+TEST_F(GenerationsTest, AFailedPartUndoesTheWholeGenerationWrite) {
+  Result<std::unique_ptr<GenerationWrite>> write =
+      store_->BeginGeneration(run_, 0, {0, 6, 2});
+  ASSERT_TRUE(write.ok()) << write.status().ToString();
+  ASSERT_TRUE((*write)->Add({MakeIndividual(6, 0, {0})}).ok());
+  // Individual 2 exists already.
+  const Status failed = (*write)->Add({MakeIndividual(2, 0, {1})});
+  EXPECT_FALSE(failed.ok());
+  EXPECT_EQ((*write)->Add({MakeIndividual(7, 0)}).ToString(),
+            failed.ToString());
+  EXPECT_EQ((*write)->Commit().ToString(), failed.ToString());
+  EXPECT_EQ(Value(*store_, "SELECT COUNT(*) FROM generations"), "0");
+  EXPECT_EQ(Value(*store_, "SELECT COUNT(*) FROM individuals WHERE id >= 6"),
+            "0");
+  EXPECT_EQ(Value(*store_, "SELECT COUNT(*) FROM parents"), "0");
+}
+
+TEST(GenerationWriteTest, OtherConnectionsSeeTheGenerationOnlyOnceCommitted) {
+  const TempStorePath path("generation-write");
+  Result<std::unique_ptr<Store>> store = Store::Open(path.path());
+  ASSERT_TRUE(store.ok()) << store.status().ToString();
+  const int64_t run = MakeRun(**store);
+  ASSERT_TRUE((*store)->AddIndividuals(run, {MakeIndividual(0, 0)}).ok());
+  Result<std::unique_ptr<Store>> reader = Store::OpenForQueries(path.path());
+  ASSERT_TRUE(reader.ok()) << reader.status().ToString();
+  const auto generations = [&] {
+    return Value(**reader, "SELECT COUNT(*) FROM generations") + " " +
+           Value(**reader, "SELECT COUNT(*) FROM births");
+  };
+
+  Result<std::unique_ptr<GenerationWrite>> write =
+      (*store)->BeginGeneration(run, 0, {0, 1, 2});
+  ASSERT_TRUE(write.ok()) << write.status().ToString();
+  ASSERT_TRUE((*write)->Add({MakeIndividual(1, 0)}).ok());
+  EXPECT_EQ(generations(), "0 1");
+  ASSERT_TRUE((*write)->Add({MakeIndividual(2, 0)}).ok());
+  EXPECT_EQ(generations(), "0 1");
+  ASSERT_TRUE((*write)->Commit().ok());
+  EXPECT_EQ(generations(), "1 3");
 }
 
 TEST_F(GenerationsTest, CompleteGenerationSetsRanksAndStatistics) {

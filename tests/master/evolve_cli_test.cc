@@ -190,7 +190,7 @@ TEST_F(EvolveCliTest, FewerGenerationsThanTheRunHasSaySoAndChangeNothing) {
                      "--generations 1 counts them all, so there is "
                      "nothing to run. To extend it, ask for more than "
                      "2: animat evolve --db " +
-                     db_ + " --generations 12"),
+                     db_ + " --workers 1 --generations 12"),
             std::string::npos)
       << err;
   EXPECT_EQ(out, "");

@@ -103,11 +103,14 @@ class MasterTest : public ::testing::Test {
 
   std::string Endpoint() const { return "ipc://" + dir_ + "/master.ipc"; }
 
-  // animat-master with `args`, bound to Endpoint() with a short heartbeat.
-  std::unique_ptr<ChildProcess> StartMaster(std::vector<std::string> args) {
+  // animat-master with `args`, bound to `bind` (by default Endpoint())
+  // with a short heartbeat.
+  std::unique_ptr<ChildProcess> StartMaster(std::vector<std::string> args,
+                                            std::string bind = "") {
     std::vector<std::string> argv = {
-        std::string(ANIMAT_BIN_DIR) + "/animat-master", "--bind", Endpoint(),
-        "--heartbeat-ms", std::to_string(kMasterHeartbeatMs)};
+        std::string(ANIMAT_BIN_DIR) + "/animat-master", "--bind",
+        bind.empty() ? Endpoint() : bind, "--heartbeat-ms",
+        std::to_string(kMasterHeartbeatMs)};
     argv.insert(argv.end(), args.begin(), args.end());
     auto master =
         std::make_unique<ChildProcess>("animat-master", std::move(argv),

@@ -24,7 +24,7 @@
 
 #include "common/base/clock.h"
 #include "common/protocol/protocol.h"
-#include "master/dispatcher.h"
+#include "master/dispatch/dispatcher.h"
 #include "master/lineage/sqlite.h"
 #include "master/lineage/store.h"
 #include "master/run/evolution_run.h"
@@ -86,8 +86,8 @@ TEST(AcknowledgeTest, AResultIsAcknowledgedOnlyOnceTheStoreHoldsIt) {
     options.acknowledge_on_receipt = false;  // As animat-master.
     options.log = [](std::string_view) {};
     options.clock = &clock;
-    Result<std::unique_ptr<Dispatcher>> dispatcher =
-        Dispatcher::Create(&context, options, (*run)->model_config());
+    Result<std::unique_ptr<Dispatcher>> dispatcher = Dispatcher::Create(
+        &context, options, ConfigToProto((*run)->model_config()));
     ASSERT_TRUE(dispatcher.ok()) << dispatcher.status().ToString();
 
     std::atomic<bool> stop{false};

@@ -1,7 +1,7 @@
 // The run loop with null-evaluation workers: their results are never
-// recorded as evaluations unless the run scores them (benchmarks only), and
-// a run that scores them goes through every generation with each stand-in
-// fitness recorded as the individual's own.
+// recorded as evaluations, and a run served through the benchmark's
+// scoring (bench/null_scoring.h) goes through every generation with each
+// stand-in fitness recorded as the individual's own.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,7 +17,8 @@
 #include <vector>
 #include <zmq.hpp>
 
-#include "master/dispatcher.h"
+#include "bench/null_scoring.h"
+#include "master/dispatch/dispatcher.h"
 #include "master/lineage/store.h"
 #include "master/run/evolution_run.h"
 #include "tests/dispatch/worker_process.h"
@@ -25,6 +26,8 @@
 namespace animat {
 namespace {
 
+using bench::NullEvaluationFitness;
+using bench::NullScoring;
 using testing::WorkerArgs;
 using testing::WorkerProcess;
 
@@ -74,8 +77,8 @@ class NullEvaluationRunTest : public ::testing::Test {
     options.heartbeat_ms = 100;
     options.accept_null_workers = true;
     options.log = [](std::string_view) {};
-    Result<std::unique_ptr<Dispatcher>> dispatcher =
-        Dispatcher::Create(&context_, options, run_->model_config());
+    Result<std::unique_ptr<Dispatcher>> dispatcher = Dispatcher::Create(
+        &context_, options, ConfigToProto(run_->model_config()));
     ASSERT_TRUE(dispatcher.ok()) << dispatcher.status().ToString();
     dispatcher_ = std::move(dispatcher).value();
     WorkerArgs args;
@@ -86,10 +89,12 @@ class NullEvaluationRunTest : public ::testing::Test {
     ASSERT_TRUE(worker_->started());
   }
 
-  Status RunToEnd() {
+  // Serves the run with `evaluators` (by default the dispatcher itself).
+  Status RunToEnd(EvaluationService* evaluators = nullptr) {
     std::atomic<bool> stop{false};
     Watchdog watchdog(&stop, std::chrono::seconds(60));
-    Status status = run_->Run(dispatcher_.get(), stop);
+    Status status =
+        run_->Run(evaluators != nullptr ? evaluators : dispatcher_.get(), stop);
     EXPECT_FALSE(stop.load()) << "the run did not end within 60 s";
     return status;
   }
@@ -102,7 +107,7 @@ class NullEvaluationRunTest : public ::testing::Test {
   std::unique_ptr<WorkerProcess> worker_;
 };
 
-TEST_F(NullEvaluationRunTest, UnscoredNullResultsStopTheRunUnrecorded) {
+TEST_F(NullEvaluationRunTest, NullResultsStopTheRunUnrecorded) {
   const Status status = RunToEnd();
   ASSERT_FALSE(status.ok());
   EXPECT_NE(status.message().find("null-evaluation worker"), std::string::npos)
@@ -122,8 +127,8 @@ TEST_F(NullEvaluationRunTest, UnscoredNullResultsStopTheRunUnrecorded) {
 }
 
 TEST_F(NullEvaluationRunTest, ScoredNullResultsCompleteEveryGeneration) {
-  run_->ScoreNullEvaluations();
-  const Status status = RunToEnd();
+  NullScoring scoring(dispatcher_.get(), settings_.evolution.seed);
+  const Status status = RunToEnd(&scoring);
   ASSERT_TRUE(status.ok()) << status.ToString();
   EXPECT_TRUE(run_->finished());
   const int64_t run = run_->run_id();

@@ -7,8 +7,8 @@
 // own. Start it before binding a CURVE server socket on that context, and
 // destroy it after closing the socket, before the context. The counters
 // are safe to read from any thread.
-#ifndef ANIMAT_MASTER_ZAP_AUTHENTICATOR_H_
-#define ANIMAT_MASTER_ZAP_AUTHENTICATOR_H_
+#ifndef ANIMAT_MASTER_DISPATCH_ZAP_AUTHENTICATOR_H_
+#define ANIMAT_MASTER_DISPATCH_ZAP_AUTHENTICATOR_H_
 
 #include <atomic>
 #include <map>
@@ -52,4 +52,4 @@ class ZapAuthenticator {
 
 }  // namespace animat
 
-#endif  // ANIMAT_MASTER_ZAP_AUTHENTICATOR_H_
+#endif  // ANIMAT_MASTER_DISPATCH_ZAP_AUTHENTICATOR_H_

@@ -1,8 +1,8 @@
-// The master's ZAP handler (master/zap_authenticator.h) with real CurveZMQ
-// sockets over TCP loopback: a worker key on the allow-list gets through,
-// an unknown key and a plain (unencrypted) peer do not, and both refusals
-// are logged.
-#include "master/zap_authenticator.h"
+// The master's ZAP handler (master/dispatch/zap_authenticator.h) with real
+// CurveZMQ sockets over TCP loopback: a worker key on the allow-list gets
+// through, an unknown key and a plain (unencrypted) peer do not, and both
+// refusals are logged.
+#include "master/dispatch/zap_authenticator.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "master/dispatcher.h"
+#include "master/dispatch/dispatcher.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "common/protocol/zmq_poll.h"
 #include "common/security/curve_keys.h"
-#include "master/zap_authenticator.h"
+#include "master/dispatch/zap_authenticator.h"
 
 namespace animat {
 namespace {
@@ -22,12 +22,10 @@ int CreditCap(int threads) {
 
 }  // namespace
 
-Result<std::unique_ptr<Dispatcher>> Dispatcher::Create(
-    zmq::context_t* context, DispatcherOptions options,
-    const ModelConfig& config) {
+Status Dispatcher::CheckOptions(const DispatcherOptions& options) {
   const bool curve = !options.curve_secret_key.empty();
-  const bool local = security::IsLocalEndpoint(options.endpoint);
-  if (!curve && !local && !options.insecure) {
+  if (!curve && !options.insecure &&
+      !security::IsLocalEndpoint(options.endpoint)) {
     return Status::InvalidArgument(
         "listening on " + options.endpoint +
         " reaches beyond this machine: give the master CurveZMQ keys "
@@ -40,8 +38,17 @@ Result<std::unique_ptr<Dispatcher>> Dispatcher::Create(
         "CurveZMQ needs a 40-character Z85 secret key and at least one "
         "allowed worker key");
   }
+  return Status::Ok();
+}
+
+Result<std::unique_ptr<Dispatcher>> Dispatcher::Create(
+    zmq::context_t* context, DispatcherOptions options, v1::Config model) {
+  Status status = CheckOptions(options);
+  if (!status.ok()) return status;
+  const bool curve = !options.curve_secret_key.empty();
+  const bool local = security::IsLocalEndpoint(options.endpoint);
   std::unique_ptr<Dispatcher> dispatcher(
-      new Dispatcher(context, std::move(options), ConfigToProto(config)));
+      new Dispatcher(context, std::move(options), std::move(model)));
   DispatcherOptions& o = dispatcher->options_;
   if (curve) {
     // The handler must serve the context before the socket binds.
@@ -75,9 +82,9 @@ Result<std::unique_ptr<Dispatcher>> Dispatcher::Create(
 }
 
 Dispatcher::Dispatcher(zmq::context_t* context, DispatcherOptions options,
-                       v1::Config config)
+                       v1::Config model)
     : options_(std::move(options)),
-      config_(std::move(config)),
+      config_(std::move(model)),
       config_hash_(protocol::ConfigHash(config_)),
       socket_(
           std::make_unique<zmq::socket_t>(*context, zmq::socket_type::router)) {

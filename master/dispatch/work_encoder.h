@@ -6,8 +6,8 @@
 // The bytes are exactly Encode() of the same Envelope (fields in field
 // order, as protobuf writes them), so workers decode them as any other.
 // Not thread-safe; cheap to make.
-#ifndef ANIMAT_MASTER_WORK_ENCODER_H_
-#define ANIMAT_MASTER_WORK_ENCODER_H_
+#ifndef ANIMAT_MASTER_DISPATCH_WORK_ENCODER_H_
+#define ANIMAT_MASTER_DISPATCH_WORK_ENCODER_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -49,4 +49,4 @@ class WorkEncoder {
 
 }  // namespace animat
 
-#endif  // ANIMAT_MASTER_WORK_ENCODER_H_
+#endif  // ANIMAT_MASTER_DISPATCH_WORK_ENCODER_H_

@@ -1,4 +1,4 @@
-#include "master/work_encoder.h"
+#include "master/dispatch/work_encoder.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "master/zap_authenticator.h"
+#include "master/dispatch/zap_authenticator.h"
 
 #include <chrono>
 #include <vector>

@@ -11,9 +11,13 @@
 // take others down with it. Malformed input of any kind is logged in one
 // line and survived.
 //
+// The model configuration travels as the protocol's message (v1::Config,
+// made by ConfigToProto): the dispatcher never evaluates, so it does not
+// link the simulator.
+//
 // Not thread-safe: one thread calls Submit and Poll.
-#ifndef ANIMAT_MASTER_DISPATCHER_H_
-#define ANIMAT_MASTER_DISPATCHER_H_
+#ifndef ANIMAT_MASTER_DISPATCH_DISPATCHER_H_
+#define ANIMAT_MASTER_DISPATCH_DISPATCHER_H_
 
 #include <chrono>
 #include <cstdint>
@@ -30,10 +34,10 @@
 #include "common/base/clock.h"
 #include "common/base/log.h"
 #include "common/base/status.h"
-#include "common/evaluation/model_config.h"
 #include "common/protocol/genome_wire.h"
 #include "common/protocol/protocol.h"
-#include "master/work_encoder.h"
+#include "master/dispatch/evaluation_service.h"
+#include "master/dispatch/work_encoder.h"
 
 namespace zmq {
 class context_t;
@@ -72,18 +76,6 @@ struct DispatcherOptions {
   const Clock* clock = &RealClock();
 };
 
-// An individual whose evaluation ended.
-struct Completion {
-  uint64_t individual = 0;
-  v1::EvaluationResult result;
-  std::string worker;       // "host:pid" of the worker that evaluated it.
-  double wall_seconds = 0;  // On the worker.
-  int attempts = 0;         // Dispatches that ended without a result.
-  // From a worker in null-evaluation mode (accept_null_workers only): the
-  // result is NOT_EVALUATED and nothing was simulated.
-  bool null_evaluation = false;
-};
-
 struct DispatcherStats {
   int64_t dispatched = 0;  // Items sent (re-sends counted again).
   int64_t completed = 0;   // Individuals completed with a result.
@@ -93,34 +85,44 @@ struct DispatcherStats {
   int64_t refused = 0;     // Workers refused.
 };
 
-class Dispatcher {
+class Dispatcher final : public EvaluationService {
  public:
-  // Binds the socket. `context` must outlive the dispatcher.
+  // Checks the options (CurveZMQ keys, an endpoint beyond loopback) and
+  // binds the socket: fails, saying why, without binding when they are
+  // wrong, and with kIoError when the endpoint cannot be bound (port in
+  // use). Workers are welcomed with `model`, the model configuration they
+  // evaluate by (ConfigToProto). `context` must outlive the dispatcher.
   static Result<std::unique_ptr<Dispatcher>> Create(zmq::context_t* context,
                                                     DispatcherOptions options,
-                                                    const ModelConfig& config);
-  ~Dispatcher();
+                                                    v1::Config model);
+  ~Dispatcher() override;
+
+  // What Create refuses before binding: an endpoint beyond loopback without
+  // CurveZMQ keys (unless `insecure`), or keys of the wrong form; a
+  // message that says what to give instead.
+  static Status CheckOptions(const DispatcherOptions& options);
 
   // Queues an individual for evaluation; an individual already pending is
   // left as it is. The genome must be valid.
-  void Submit(uint64_t individual, const v1::Genome& genome);
+  void Submit(uint64_t individual, const v1::Genome& genome) override;
   // The same with the genome serialised (protocol::SerializeGenome), as
   // the caller may already have it.
-  void Submit(uint64_t individual, const protocol::SerializedGenome& genome);
+  void Submit(uint64_t individual,
+              const protocol::SerializedGenome& genome) override;
 
   // Serves workers for up to `timeout_ms` (of the clock's time) and returns
   // the completions that came in, as soon as there are some.
-  std::vector<Completion> Poll(int timeout_ms);
+  std::vector<Completion> Poll(int timeout_ms) override;
 
   // Tells the workers that delivered these completions' results that they
   // may forget them (with acknowledge_on_receipt off; otherwise, and for
   // individuals not completed here or already acknowledged, nothing). A
   // worker that has gone since is not told; it sends the result again to
   // the next master, which ignores it once recorded.
-  void Acknowledge(const std::vector<uint64_t>& individuals);
+  void Acknowledge(const std::vector<uint64_t>& individuals) override;
 
   // Individuals submitted and not completed.
-  size_t pending() const { return pending_.size(); }
+  size_t pending() const override { return pending_.size(); }
   // Workers currently greeted.
   size_t workers() const { return workers_.size(); }
   const DispatcherStats& stats() const { return stats_; }
@@ -128,7 +130,7 @@ class Dispatcher {
   // The endpoint actually bound ("tcp://127.0.0.1:41234" for a ":*" port).
   const std::string& endpoint() const { return endpoint_; }
   // DispatcherOptions::clock.
-  const Clock& clock() const { return *options_.clock; }
+  const Clock& clock() const override { return *options_.clock; }
 
  private:
   using TimePoint = Clock::TimePoint;
@@ -156,7 +158,7 @@ class Dispatcher {
   };
 
   Dispatcher(zmq::context_t* context, DispatcherOptions options,
-             v1::Config config);
+             v1::Config model);
 
   void Receive(std::vector<Completion>* done);
   void Handle(const std::string& identity, const v1::Envelope& envelope,
@@ -222,4 +224,4 @@ class Dispatcher {
 
 }  // namespace animat
 
-#endif  // ANIMAT_MASTER_DISPATCHER_H_
+#endif  // ANIMAT_MASTER_DISPATCH_DISPATCHER_H_

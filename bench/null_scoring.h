@@ -1,0 +1,66 @@
+// The master benchmark's evaluation service (master/dispatch/
+// evaluation_service.h): a Dispatcher whose null-evaluation workers
+// simulate nothing, with each of their results scored here as OK with the
+// stand-in fitness NullEvaluationFitness(seed, id), so that an
+// EvolutionRun served through it selects generation after generation and
+// records every result by the same store writes as a real one. No command
+// line reaches it: animat-master serves its run with the Dispatcher
+// itself, and a run refuses null results (evolution_run.h).
+//
+// Header-only, so that the run tests use it without the benchmarks being
+// built. Not thread-safe, like the Dispatcher it wraps.
+#ifndef ANIMAT_BENCH_NULL_SCORING_H_
+#define ANIMAT_BENCH_NULL_SCORING_H_
+
+#include <cstdint>
+#include <vector>
+
+#include "common/base/rng.h"
+#include "master/dispatch/dispatcher.h"
+
+namespace animat::bench {
+
+// The stand-in fitness of individual `id` of a run of `seed`: uniform in
+// [0, 1), a pure function of the two.
+inline double NullEvaluationFitness(uint64_t seed, uint64_t id) {
+  return RandomStream(seed, id, StreamPurpose::kNullFitness).NextDouble();
+}
+
+class NullScoring final : public EvaluationService {
+ public:
+  // `dispatcher` (accepting null workers) must outlive this object.
+  NullScoring(Dispatcher* dispatcher, uint64_t seed)
+      : dispatcher_(dispatcher), seed_(seed) {}
+
+  void Submit(uint64_t individual, const v1::Genome& genome) override {
+    dispatcher_->Submit(individual, genome);
+  }
+  void Submit(uint64_t individual,
+              const protocol::SerializedGenome& genome) override {
+    dispatcher_->Submit(individual, genome);
+  }
+  std::vector<Completion> Poll(int timeout_ms) override {
+    std::vector<Completion> done = dispatcher_->Poll(timeout_ms);
+    for (Completion& c : done) {
+      if (!c.null_evaluation) continue;
+      c.result.Clear();
+      c.result.set_status(v1::EvaluationResult::OK);
+      c.result.set_fitness(NullEvaluationFitness(seed_, c.individual));
+      c.null_evaluation = false;
+    }
+    return done;
+  }
+  void Acknowledge(const std::vector<uint64_t>& individuals) override {
+    dispatcher_->Acknowledge(individuals);
+  }
+  size_t pending() const override { return dispatcher_->pending(); }
+  const Clock& clock() const override { return dispatcher_->clock(); }
+
+ private:
+  Dispatcher* dispatcher_;
+  uint64_t seed_;
+};
+
+}  // namespace animat::bench
+
+#endif  // ANIMAT_BENCH_NULL_SCORING_H_

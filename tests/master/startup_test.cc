@@ -1,0 +1,165 @@
+// The master's start-up (master/run/session.h), shared by animat-master and
+// `animat evolve`: a port in use is found before the run is written, so a
+// failed start leaves the store as it was; a resume never asks for fewer
+// generations than the run has made; a stopped master prints the whole
+// command that continues it, and that command, run as printed, does.
+#include <csignal>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+#include <zmq.hpp>
+
+#include "tests/master/master_harness.h"
+
+namespace animat::testing {
+namespace {
+
+// A TCP port on loopback held by a socket of the test, as another program
+// would hold it.
+class BusyPort {
+ public:
+  BusyPort() {
+    socket_.bind("tcp://127.0.0.1:*");
+    endpoint_ = socket_.get(zmq::sockopt::last_endpoint);
+  }
+  const std::string& endpoint() const { return endpoint_; }
+
+ private:
+  zmq::context_t context_{1};
+  zmq::socket_t socket_{context_, zmq::socket_type::router};
+  std::string endpoint_;
+};
+
+class StartupTest : public MasterTest {
+ protected:
+  // animat-master with `args` on `bind`, expected to exit 1 saying that it
+  // cannot bind there.
+  void ExpectCannotBind(const std::vector<std::string>& args,
+                        const std::string& bind) {
+    std::unique_ptr<ChildProcess> master = StartMaster(args, bind);
+    ASSERT_TRUE(AwaitExit(*master, kStepWait, "a master on a busy port"));
+    EXPECT_EQ(master->exit_code(), 1) << master->Describe();
+    EXPECT_NE(master->standard_error().find("cannot bind " + bind),
+              std::string::npos)
+        << master->output();
+  }
+
+  // A store holding run 1 of `generations` generations, finished.
+  std::string FinishedRun(int generations) {
+    TestRun run;
+    run.seed = 5;
+    run.generations = generations;
+    const std::string db = Path("finished.db");
+    RunToEnd(WriteConfig("run.txtpb", run), db, /*workers=*/2);
+    return db;
+  }
+};
+
+TEST_F(StartupTest, ABusyPortLeavesAFreshStoreWithoutARun) {
+  const BusyPort port;
+  const std::string db = Path("fresh.db");
+  ExpectCannotBind(
+      {"--config", WriteConfig("run.txtpb", TestRun()), "--db", db},
+      port.endpoint());
+  const Progress progress = ReadProgress(db);
+  EXPECT_FALSE(progress.has_run) << progress.ToString();
+  // Nothing stuck: the same command on a free endpoint starts the run.
+  std::unique_ptr<ChildProcess> master =
+      StartRun(WriteConfig("run.txtpb", TestRun()), db);
+  ASSERT_TRUE(AwaitOutput(*master, "run 1 started")) << master->output();
+  ASSERT_TRUE(master->Signal(SIGTERM));
+  ASSERT_TRUE(AwaitExit(*master, kStepWait, "SIGTERM"));
+  EXPECT_EQ(master->exit_code(), 0) << master->output();
+}
+
+TEST_F(StartupTest, ABusyPortLeavesAResumedStoreAsItWas) {
+  const std::string db = FinishedRun(2);
+  if (HasFatalFailure()) return;
+  const StoreContents before = ReadStoreContents(db);
+  const std::vector<SqlRow> runs = QueryRows(db, "SELECT * FROM runs");
+  const BusyPort port;
+  // An extension would rewrite the run's generations and state.
+  ExpectCannotBind({"--resume", "--db", db, "--generations", "4"},
+                   port.endpoint());
+  ExpectSameContents(before, ReadStoreContents(db));
+  EXPECT_EQ(QueryRows(db, "SELECT * FROM runs"), runs);
+}
+
+TEST_F(StartupTest, ResumingWithFewerGenerationsThanMadeIsRefused) {
+  const std::string db = FinishedRun(2);
+  if (HasFatalFailure()) return;
+  const StoreContents before = ReadStoreContents(db);
+  std::unique_ptr<ChildProcess> master = Resume(db, {"--generations", "1"});
+  ASSERT_TRUE(AwaitExit(*master, kStepWait, "a resume for fewer generations"));
+  EXPECT_EQ(master->exit_code(), 1) << master->Describe();
+  EXPECT_NE(master->standard_error().find(
+                db +
+                " holds run 1 (finished) with 2 generations; "
+                "--generations 1 counts them all, so there is nothing "
+                "to run. To extend it, ask for more than 2: "
+                "animat-master --resume --db " +
+                db + " --bind " + Endpoint() + " --heartbeat-ms " +
+                std::to_string(kMasterHeartbeatMs) + " --generations 12"),
+            std::string::npos)
+      << master->output();
+  ExpectSameContents(before, ReadStoreContents(db));
+}
+
+TEST_F(StartupTest, AFinishedRunIsNotServedAgain) {
+  const std::string db = FinishedRun(2);
+  if (HasFatalFailure()) return;
+  const StoreContents before = ReadStoreContents(db);
+  std::unique_ptr<ChildProcess> master = Resume(db);
+  ASSERT_TRUE(AwaitExit(*master, kStepWait, "a resume of a finished run"));
+  EXPECT_EQ(master->exit_code(), 0) << master->output();
+  EXPECT_NE(master->output().find("run 1 is finished (2 generations); to "
+                                  "extend it: animat-master --resume"),
+            std::string::npos)
+      << master->output();
+  EXPECT_EQ(master->output().find("listening on"), std::string::npos)
+      << master->output();
+  ExpectSameContents(before, ReadStoreContents(db));
+}
+
+TEST_F(StartupTest, TheResumeHintIsTheWholeCommandAndWorksAsPrinted) {
+  TestRun run;
+  run.seed = 6;
+  run.generations = 3;
+  const std::string db = Path("hint.db");
+  std::unique_ptr<ChildProcess> master =
+      StartRun(WriteConfig("run.txtpb", run), db);
+  const auto workers = StartWorkers(2);
+  ASSERT_TRUE(AwaitStore(
+      db, [](const Progress& p) { return p.evaluated > 0; }, *master));
+  ASSERT_TRUE(master->Signal(SIGTERM));
+  ASSERT_TRUE(AwaitExit(*master, kStepWait, "SIGTERM"));
+  ASSERT_EQ(master->exit_code(), 0) << master->output();
+  const std::string expected = "animat-master --resume --db " + db +
+                               " --bind " + Endpoint() + " --heartbeat-ms " +
+                               std::to_string(kMasterHeartbeatMs);
+  const std::string output = master->standard_error();
+  const size_t hint = output.find("stopped; resume with: ");
+  ASSERT_NE(hint, std::string::npos) << output;
+  std::istringstream line(
+      output.substr(hint + 22, output.find('\n', hint) - hint - 22));
+  std::vector<std::string> words;
+  for (std::string word; line >> word;) words.push_back(word);
+  std::string printed;
+  for (const std::string& w : words)
+    printed += (printed.empty() ? "" : " ") + w;
+  ASSERT_EQ(printed, expected);
+
+  // As printed (the temporary paths need no quoting): the same workers
+  // come back to it, and the run ends.
+  words[0] = std::string(ANIMAT_BIN_DIR) + "/animat-master";
+  ChildProcess resumed("animat-master", words,
+                       ChildProcess::Lifetime::kExitsByItself);
+  ASSERT_TRUE(resumed.started());
+  ASSERT_TRUE(AwaitExit(resumed, kRunWait, "the resumed run"));
+  EXPECT_EQ(resumed.exit_code(), 0) << resumed.output();
+  EXPECT_TRUE(ReadProgress(db).finished) << ReadProgress(db).ToString();
+}
+
+}  // namespace
+}  // namespace animat::testing
