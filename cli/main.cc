@@ -4,6 +4,7 @@
 #include <string>
 
 #include "cli/commands.h"
+#include "common/kernels/isa.h"
 #include "common/protocol/protocol.h"
 
 int main(int argc, char** argv) {
@@ -30,6 +31,12 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;
+  }
+  // A mistyped ANIMAT_ISA is refused, not silently replaced.
+  if (const animat::Result<animat::Isa> isa = animat::IsaFromEnvironment();
+      !isa.ok()) {
+    std::cerr << "animat: " << isa.status().message() << "\n";
+    return 2;
   }
   for (const CLI::App* sub : app.get_subcommands()) {
     return commands.at(sub->get_name())();

@@ -12,6 +12,7 @@
 #include <google/protobuf/stubs/logging.h>
 #include <CLI/CLI.hpp>
 
+#include "common/kernels/isa.h"
 #include "common/security/curve_keys.h"
 #include "worker/worker.h"
 
@@ -59,6 +60,12 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;
+  }
+  // A mistyped ANIMAT_ISA is refused, not silently replaced.
+  if (const animat::Result<animat::Isa> isa = animat::IsaFromEnvironment();
+      !isa.ok()) {
+    std::cerr << "animat-worker: " << isa.status().message() << "\n";
+    return 2;
   }
 
   if (!server_key_file.empty()) {

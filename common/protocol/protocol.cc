@@ -1,5 +1,7 @@
 #include "common/protocol/protocol.h"
 
+#include "common/kernels/isa.h"
+
 #include <cmath>
 #include <utility>
 
@@ -16,7 +18,8 @@ const std::string& BuildId() {
 
 std::string VersionText() {
   return "build: " + BuildId() + "\nprotocol: " + std::to_string(kVersion) +
-         "\nmodel: " + std::to_string(kModelVersion);
+         "\nmodel: " + std::to_string(kModelVersion) +
+         "\nkernels: " + IsaReport();
 }
 
 std::string Encode(v1::Envelope envelope) {

@@ -58,7 +58,9 @@ inline constexpr int kReconnectMaxMs = 5000;
 const std::string& BuildId();
 
 // What --version prints, one "name: value" line each (no final newline):
-// the build id, the protocol version and the model version.
+// the build id, the protocol version, the model version and the kernels'
+// instruction-set path in use with those this machine supports
+// (common/kernels/isa.h).
 std::string VersionText();
 
 // Serialises an envelope stamped with kVersion.

@@ -10,6 +10,7 @@
 #include "animat/v1/evolution.pb.h"
 #include "common/evaluation/model_config.h"
 #include "common/io/proto_file.h"
+#include "common/kernels/isa.h"
 #include "common/protocol/protocol.h"
 #include "master/evolution/evolution_params.h"
 #include "tests/cli/run_animat.h"
@@ -145,11 +146,32 @@ TEST(CliInputTest, NumbersInMessagesAreShortest) {
       << run.output;
 }
 
+TEST(CliInputTest, AnIsaPathIsChosenByTheEnvironmentOrRefused) {
+  const std::string simulate =
+      "simulate --genome " + testing::TestData("genomes/seed-1198.json");
+  const Outcome widest = Animat(simulate);
+  ASSERT_EQ(widest.exit_code, 0) << widest.output;
+  setenv("ANIMAT_ISA", "baseline", 1);
+  const Outcome baseline = Animat(simulate);
+  setenv("ANIMAT_ISA", "sse9", 1);
+  const Outcome bad = Animat(simulate);
+  unsetenv("ANIMAT_ISA");
+  // The same bits on every path: the same output, state hash included.
+  EXPECT_EQ(baseline.exit_code, 0);
+  EXPECT_EQ(baseline.output, widest.output);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.output.find("ANIMAT_ISA: \"sse9\" is not an instruction-set "
+                            "path (expected baseline, avx2 or avx512)"),
+            std::string::npos)
+      << bad.output;
+}
+
 TEST(CliInputTest, EveryToolTellsItsVersion) {
   const std::string expected =
       "build: " + protocol::BuildId() +
       "\nprotocol: " + std::to_string(protocol::kVersion) +
-      "\nmodel: " + std::to_string(protocol::kModelVersion) + "\n";
+      "\nmodel: " + std::to_string(protocol::kModelVersion) +
+      "\nkernels: " + IsaReport() + "\n";
   EXPECT_EQ(Animat("--version").output, expected);
   EXPECT_EQ(Animat("--version").exit_code, 0);
   for (const std::string tool : {"animat-master", "animat-worker"}) {
