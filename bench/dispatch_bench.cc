@@ -58,9 +58,11 @@ struct Options {
   int null_workers = 2;
   std::vector<int> threads = {8, 64, 256};
   // evaluate
-  std::vector<std::string> genomes = {ANIMAT_GENOMES_DIR "/seed-1198.json",
-                                      ANIMAT_GENOMES_DIR "/seed-1203.json",
-                                      ANIMAT_GENOMES_DIR "/seed-139.json"};
+  // Bodies with chambers (all evaluate ok under the default
+  // configuration): two random genomes and an evolved swimmer.
+  std::vector<std::string> genomes = {
+      ANIMAT_GENOMES_DIR "/seed-1198.json", ANIMAT_GENOMES_DIR "/seed-139.json",
+      ANIMAT_BENCH_DATA_DIR "/accuracy/evolved-dn1-g039-47646.json"};
   int evaluations = 300;
   bool verbose = false;
 };
