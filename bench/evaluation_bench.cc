@@ -298,6 +298,8 @@ BENCHMARK_TEMPLATE(BM_NetworkStep, float)
 
 template <typename S>
 void BM_SignalStep(benchmark::State& state) {
+  OnPath path(state, state.range(0));
+  if (!path.ok()) return;
   Developed<S> d(BenchGenome());
   GrnBatchT<S>& grn = d.development.grn();
   MorphogenFieldT<S>& field = d.development.field();
@@ -309,12 +311,20 @@ void BM_SignalStep(benchmark::State& state) {
   }
   state.counters["morphogens"] = field.morphogens();
 }
-BENCHMARK_TEMPLATE(BM_SignalStep, double)->Unit(benchmark::kMicrosecond);
-BENCHMARK_TEMPLATE(BM_SignalStep, float)->Unit(benchmark::kMicrosecond);
+BENCHMARK_TEMPLATE(BM_SignalStep, double)
+    ->ArgName("isa")
+    ->DenseRange(0, 2)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_TEMPLATE(BM_SignalStep, float)
+    ->ArgName("isa")
+    ->DenseRange(0, 2)
+    ->Unit(benchmark::kMicrosecond);
 
 // One motion step of the whole network side: signals, then network.
 template <typename S>
 void BM_GrnStep(benchmark::State& state) {
+  OnPath path(state, state.range(0));
+  if (!path.ok()) return;
   Developed<S> d(BenchGenome());
   GrnBatchT<S>& grn = d.development.grn();
   MorphogenFieldT<S>& field = d.development.field();
@@ -326,8 +336,14 @@ void BM_GrnStep(benchmark::State& state) {
     ++step;
   }
 }
-BENCHMARK_TEMPLATE(BM_GrnStep, double)->Unit(benchmark::kMicrosecond);
-BENCHMARK_TEMPLATE(BM_GrnStep, float)->Unit(benchmark::kMicrosecond);
+BENCHMARK_TEMPLATE(BM_GrnStep, double)
+    ->ArgName("isa")
+    ->DenseRange(0, 2)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_TEMPLATE(BM_GrnStep, float)
+    ->ArgName("isa")
+    ->DenseRange(0, 2)
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace animat
