@@ -155,8 +155,10 @@ EvaluationResult RunModel(const Network& network, const ModelConfig& config,
     }
   }
 
-  // Motion: network running (model §7.7, §8.1).
+  // Motion: network running (model §7.7, §8.1); energy counts from here
+  // (model §10.1).
   for (Vec2& v : state.velocity) v = Vec2{};
+  soft_body.ResetActuationWork();
   const Vec2 start = CentreOfMass(state);
   if (observer) {
     observer->OnMotionStep(MotionPhase::kMotion, 0, state, expand, contract);
@@ -190,15 +192,19 @@ EvaluationResult RunModel(const Network& network, const ModelConfig& config,
   }
 
   const double fitness = Length(CentreOfMass(state) - start);
-  if (!std::isfinite(fitness)) {
-    EvaluationResult failure = Failure(EvalStatus::kNumericalFailure,
-                                       "non-finite fitness", cells, steps);
+  const double energy = soft_body.actuation_work();
+  if (!std::isfinite(fitness) || !std::isfinite(energy)) {
+    EvaluationResult failure = Failure(
+        EvalStatus::kNumericalFailure,
+        std::isfinite(fitness) ? "non-finite energy" : "non-finite fitness",
+        cells, steps);
     failure.body = summary;
     return failure;
   }
   EvaluationResult result;
   result.status = EvalStatus::kOk;
   result.fitness = fitness;
+  result.energy = energy;
   result.cells = cells;
   result.steps = steps;
   result.state_hash = HashFinalState(state, grn);
@@ -236,6 +242,7 @@ v1::EvaluationResult EvaluationResultToProto(const EvaluationResult& r) {
       static_cast<int>(r.status) + v1::EvaluationResult::OK));
   m.set_reason(r.reason);
   if (r.fitness) m.set_fitness(*r.fitness);
+  if (r.energy) m.set_energy(*r.energy);
   m.set_cells(r.cells);
   m.set_steps(r.steps);
   m.set_state_hash(r.state_hash);

@@ -51,6 +51,10 @@ struct EvaluationResult {
   // The body, once built (ok, a body without enough chambers, or a
   // numerical failure after development).
   std::optional<BodySummary> body;
+  // The actuators' work over the motion phase (docs/model.md §10.1;
+  // SoftBody::actuation_work), in the model's force times length units;
+  // only when kOk.
+  std::optional<double> energy;
 };
 
 v1::EvaluationResult EvaluationResultToProto(const EvaluationResult& result);

@@ -28,6 +28,7 @@ SoftBody::SoftBody(const Body& body, const PhysicsParams& params)
     rest0_.push_back(s.rest_length);
   }
   rest_ = rest0_;
+  rest_change_.assign(rest0_.size(), 0.0);
   walk_begin_.push_back(0);
   for (const Chamber& c : body.chambers) {
     walk_.insert(walk_.end(), c.walk.begin(), c.walk.end());
@@ -55,26 +56,38 @@ void SoftBody::SetActuation(std::span<const double> expand,
     const double factor =
         1.0 + amax * (expand[a] + expand[b] - contract[a] - contract[b]);
     // NaN actuation stays NaN (never replaced by the floor).
-    rest_[s] = (factor < floor ? floor : factor) * rest0_[s];
+    const double rest = (factor < floor ? floor : factor) * rest0_[s];
+    rest_change_[s] = rest - rest_[s];
+    rest_[s] = rest;
   }
+  work_pending_ = true;
 }
 
 void SoftBody::AddSpringForces(const MotionState& state, Vec2* force) const {
+  AddSprings<false>(state, force);
+}
+
+template <bool kWork>
+double SoftBody::AddSprings(const MotionState& state, Vec2* force) const {
   const Vec2* x = state.position.data();
   const Vec2* v = state.velocity.data();
   const double k = params_.stiffness;
   const double gamma = params_.damping;
+  double work = 0.0;
   for (size_t s = 0; s < rest_.size(); ++s) {
     const int a = spring_a_[s];
     const int b = spring_b_[s];
     const Vec2 d = x[b] - x[a];
     const double l = Length(d);
     const Vec2 u = l > 0.0 ? d / l : Vec2{};
-    const double f = k * (l - rest_[s]) + gamma * Dot(v[b] - v[a], u);
+    const double elastic = k * (l - rest_[s]);
+    if constexpr (kWork) work += std::fabs(elastic * rest_change_[s]);
+    const double f = elastic + gamma * Dot(v[b] - v[a], u);
     const Vec2 fa = u * f;
     force[a] += fa;
     force[b] -= fa;
   }
+  return work;
 }
 
 void SoftBody::AddPressureForces(const MotionState& state, Vec2* force) const {
@@ -139,7 +152,12 @@ void SoftBody::AddDragForces(const MotionState& state, Vec2* force) const {
 void SoftBody::ComputeForces(const MotionState& state, std::vector<Vec2>* force,
                              bool drag) {
   force->assign(nodes_, Vec2{});
-  AddSpringForces(state, force->data());
+  if (work_pending_) {
+    work_ += AddSprings<true>(state, force->data());
+    work_pending_ = false;
+  } else {
+    AddSprings<false>(state, force->data());
+  }
   AddPressureForces(state, force->data());
   if (drag) AddDragForces(state, force->data());
 }
@@ -268,6 +286,18 @@ void SoftBody::VerletStep(double h, bool drag, MotionState* state) {
   }
   std::vector<Vec2>& a0 = k_[0];
   std::vector<Vec2>& a1 = k_[1];
+  if (work_pending_) {
+    // The work at the step's start, from its measured spring lengths, in
+    // AddSprings' order and arithmetic.
+    const double k = params_.stiffness;
+    double work = 0.0;
+    for (size_t s = 0; s < rest_.size(); ++s) {
+      work += std::fabs(k * (geometry_.spring_length[s] - rest_[s]) *
+                        rest_change_[s]);
+    }
+    work_ += work;
+    work_pending_ = false;
+  }
   AccelerationFrom(geometry_, state->velocity, drag, &a0);
   stage_.position.resize(nodes_);
   stage_.velocity.resize(nodes_);

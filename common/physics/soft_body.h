@@ -53,10 +53,22 @@ class SoftBody : public MotionStepper {
 
   // Rest lengths from each node's EXPAND and CONTRACT values:
   //   L = max(min_rest_fraction, 1 + A_max (e_a + e_b - c_a - c_b)) L0.
+  // The change of each rest length is charged as actuation work at the
+  // next force evaluation (actuation_work()).
   void SetActuation(std::span<const double> expand,
                     std::span<const double> contract);
   // Current rest length of each spring.
   const std::vector<double>& rest_lengths() const { return rest_; }
+
+  // The work of the actuators (docs/model.md §10.1): at the first force
+  // evaluation after each SetActuation, the sum over springs, in index
+  // order, of |f dL|, where dL is the change of the spring's rest length L
+  // made by that SetActuation and f = k (l - L) its elastic force there
+  // (l its length at the state the forces are computed at: the start of
+  // the step). Summed since construction or the last reset; a constant
+  // actuation adds 0 after its first step.
+  double actuation_work() const { return work_; }
+  void ResetActuationWork() { work_ = 0.0; }
 
   // Total force on every node at `state`: springs, pressure, and drag
   // unless `drag` is false.
@@ -101,10 +113,17 @@ class SoftBody : public MotionStepper {
   int nodes_;
   std::vector<int> spring_a_, spring_b_;
   std::vector<double> rest0_, rest_;
+  std::vector<double> rest_change_;  // dL of the last SetActuation.
+  bool work_pending_ = false;        // It is not yet charged.
+  double work_ = 0.0;
   std::vector<int> walk_begin_, walk_;  // Chamber walks, flattened.
   std::vector<int> walk_next_;          // The node after walk_[k] in its walk.
   std::vector<double> rest_area_;
   std::vector<int> skin_a_, skin_b_;
+  // Springs' forces added to `force`; returns, with kWork, the work of
+  // the last rest-length change at `state` (actuation_work()), else 0.
+  template <bool kWork>
+  double AddSprings(const MotionState& state, Vec2* force) const;
   // One sub-step of h; `drag` says whether drag is among the forces.
   void EulerStep(double h, bool drag, MotionState* state);
   void VerletStep(double h, bool drag, MotionState* state);

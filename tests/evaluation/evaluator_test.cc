@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -81,6 +83,66 @@ TEST(EvaluatorTest, ViableAnimatRunsEveryPhase) {
   EXPECT_EQ(r.steps, 400 + 200 + 300);
   EXPECT_NE(r.state_hash, 0u);
   EXPECT_TRUE(r.reason.empty());
+  // The actuators' work, recorded with the result (model §10.1).
+  ASSERT_TRUE(r.energy.has_value());
+  EXPECT_TRUE(std::isfinite(*r.energy));
+  EXPECT_GT(*r.energy, 0.0);
+  const v1::EvaluationResult m = EvaluationResultToProto(r);
+  ASSERT_TRUE(m.has_energy());
+  EXPECT_EQ(m.energy(), *r.energy);
+}
+
+TEST(EvaluatorTest, EnergyIsTheMotionPhasesActuationWork) {
+  // Replays the work from what an observer sees: at motion step t, the
+  // state the step started from (the previous call's) and the actuation
+  // the step set, against the one before it (for t = 1, equilibration's).
+  struct Replay : EvaluationObserver {
+    const ModelConfig* config = nullptr;
+    std::unique_ptr<SoftBody> soft;
+    Body body;
+    MotionState start;
+    double work = 0.0;
+    void OnBody(const Body& b, std::span<const double> e,
+                std::span<const double> c) override {
+      body = b;
+      soft = std::make_unique<SoftBody>(b, config->physics);
+      soft->SetActuation(e, c);
+    }
+    void OnMotionStep(MotionPhase phase, int step, const MotionState& state,
+                      std::span<const double> e,
+                      std::span<const double> c) override {
+      if (phase == MotionPhase::kMotion && step > 0) {
+        const std::vector<double> before = soft->rest_lengths();
+        soft->SetActuation(e, c);
+        const std::vector<double>& after = soft->rest_lengths();
+        double step_work = 0.0;
+        for (size_t s = 0; s < body.springs.size(); ++s) {
+          const Spring& spring = body.springs[s];
+          const double l =
+              Length(start.position[spring.b] - start.position[spring.a]);
+          step_work += std::fabs(config->physics.stiffness * (l - after[s]) *
+                                 (after[s] - before[s]));
+        }
+        work += step_work;
+      }
+      start = state;
+    }
+  };
+  const ModelConfig config = ShortConfig();
+  Replay replay;
+  replay.config = &config;
+  const EvaluationResult r =
+      Evaluate(LoadGenome("seed-1198.json"), config, &replay);
+  ASSERT_EQ(r.status, EvalStatus::kOk) << r.reason;
+  ASSERT_TRUE(r.energy.has_value());
+  EXPECT_GT(replay.work, 0.0);
+  EXPECT_EQ(*r.energy, replay.work);
+  // A failure has no energy.
+  const EvaluationResult failed =
+      Evaluate(LoadGenome("seed-2-too-few-cells.json"), config);
+  EXPECT_NE(failed.status, EvalStatus::kOk);
+  EXPECT_FALSE(failed.energy.has_value());
+  EXPECT_FALSE(EvaluationResultToProto(failed).has_energy());
 }
 
 TEST(EvaluatorTest, RunawayMotionIsANumericalFailure) {
@@ -237,10 +299,10 @@ TEST(EvaluatorTest, ResultConvertsToProto) {
   EXPECT_EQ(m.status(), v1::EvaluationResult::OK);
   ASSERT_TRUE(m.has_fitness());  // A fitness of 0 is still present.
   EXPECT_EQ(m.fitness(), 0.0);
-  EXPECT_EQ(
-      EvaluationResultToProto({EvalStatus::kInvalidGenome, "", {}, 0, 0, 0, {}})
-          .status(),
-      v1::EvaluationResult::INVALID_GENOME);
+  EXPECT_EQ(EvaluationResultToProto(
+                {EvalStatus::kInvalidGenome, "", {}, 0, 0, 0, {}, {}})
+                .status(),
+            v1::EvaluationResult::INVALID_GENOME);
 }
 
 }  // namespace
