@@ -28,7 +28,15 @@ int Worker::Run() {
   zmq::context_t context(1);
   int backoff = options_.reconnect_min_ms;
   while (!stop_.load(std::memory_order_relaxed)) {
-    const SessionEnd end = Session(*this, context).Run();
+    SessionEnd end;
+    try {
+      end = Session(*this, context).Run();
+    } catch (const zmq::error_t& e) {
+      // The endpoint was checked (protocol::CheckEndpoint); ZeroMQ may
+      // still refuse it.
+      options_.log("cannot connect to " + options_.endpoint + ": " + e.what());
+      return kExitBadEndpoint;
+    }
     if (end == SessionEnd::kRefused) return kExitRefused;
     if (end == SessionEnd::kStopped) break;
     if (end == SessionEnd::kLostAfterWelcome) {

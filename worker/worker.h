@@ -51,8 +51,9 @@ struct WorkerOptions {
 class Worker {
  public:
   // Exit codes of Run().
-  static constexpr int kExitStopped = 0;  // Stop() was called.
-  static constexpr int kExitRefused = 3;  // The master refused us.
+  static constexpr int kExitStopped = 0;      // Stop() was called.
+  static constexpr int kExitBadEndpoint = 2;  // ZeroMQ refused the endpoint.
+  static constexpr int kExitRefused = 3;      // The master refused us.
 
   explicit Worker(WorkerOptions options);
   ~Worker();

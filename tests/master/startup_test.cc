@@ -2,8 +2,10 @@
 // `animat evolve`: a port in use is found before the run is written, so a
 // failed start leaves the store as it was; a resume never asks for fewer
 // generations than the run has made; a stopped master prints the whole
-// command that continues it, and that command, run as printed, does.
+// command that continues it, and that command, run as printed, does; a
+// malformed endpoint is a usage error in both programs.
 #include <csignal>
+#include <filesystem>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -159,6 +161,33 @@ TEST_F(StartupTest, TheResumeHintIsTheWholeCommandAndWorksAsPrinted) {
   ASSERT_TRUE(AwaitExit(resumed, kRunWait, "the resumed run"));
   EXPECT_EQ(resumed.exit_code(), 0) << resumed.output();
   EXPECT_TRUE(ReadProgress(db).finished) << ReadProgress(db).ToString();
+}
+
+TEST_F(StartupTest, MalformedEndpointsAreUsageErrorsInBothPrograms) {
+  const std::string config = WriteConfig("run.txtpb", TestRun());
+  const std::string db = Path("never.db");
+  for (const std::string endpoint :
+       {"127.0.0.1:5613", "tcp://127.0.0.1:abc", "http://localhost:80",
+        "tcp://127.0.0.1:70000", "ipc://"}) {
+    ChildProcess master("animat-master",
+                        {std::string(ANIMAT_BIN_DIR) + "/animat-master",
+                         "--config", config, "--db", db, "--bind", endpoint},
+                        ChildProcess::Lifetime::kExitsByItself);
+    ChildProcess worker(
+        "animat-worker",
+        {std::string(ANIMAT_BIN_DIR) + "/animat-worker", "--connect", endpoint},
+        ChildProcess::Lifetime::kExitsByItself);
+    for (ChildProcess* process : {&master, &worker}) {
+      ASSERT_TRUE(AwaitExit(*process, kStepWait, endpoint));
+      EXPECT_EQ(process->exit_code(), 2) << process->Describe();
+      const std::string error = process->standard_error();
+      EXPECT_NE(error.find("\"" + endpoint + "\""), std::string::npos) << error;
+      EXPECT_NE(error.find("expected tcp://HOST:PORT"), std::string::npos)
+          << error;
+      EXPECT_EQ(error.find("terminate"), std::string::npos) << error;
+    }
+    EXPECT_FALSE(std::filesystem::exists(db)) << endpoint;
+  }
 }
 
 }  // namespace
