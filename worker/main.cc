@@ -1,9 +1,12 @@
 // animat-worker --connect ENDPOINT [--threads N] [--heartbeat-ms MS]
+//               [--exit-when-done] [--idle-timeout S]
 //               [--curve-server MASTER.pub --curve-secret WORKER.key]
 //
 // Evaluates animats for a master until SIGTERM or SIGINT; then hands back
 // the work it has not started, finishes what it is evaluating, and exits 0.
-// Exits 3 when the master refuses it (another protocol version or
+// With --exit-when-done it also exits 0 when the master says its run is
+// over, and with --idle-timeout when no master has welcomed it for S
+// seconds. Exits 3 when the master refuses it (another protocol version or
 // build), 2 on a usage error.
 #include <csignal>
 #include <iostream>
@@ -47,6 +50,12 @@ void AddOptions(CLI::App& app, animat::WorkerOptions& options, KeyFiles& keys) {
   app.add_option("--heartbeat-ms", options.heartbeat_ms,
                  "Heartbeat interval until the master sets its own")
       ->check(CLI::Range(10, 600000))
+      ->capture_default_str();
+  app.add_flag("--exit-when-done", options.exit_when_done,
+               "Exit when the master says its run is over");
+  app.add_option("--idle-timeout", options.idle_timeout_s,
+                 "Exit after this many seconds without a master (0: never)")
+      ->check(CLI::Range(0, 100000000))
       ->capture_default_str();
   app.add_flag("--null-evaluation", options.null_evaluation,
                "Evaluate nothing; answer at once (dispatch benchmarks)");

@@ -76,6 +76,7 @@ Result<DispatcherOptions> ListenOptions(const SessionOptions& o) {
   options.heartbeat_ms = o.heartbeat_ms;
   options.insecure = o.insecure;
   options.log = o.dispatcher_log;
+  options.notices = o.log;  // "No worker has joined", even from evolve.
   // Workers keep each result until the run has committed it.
   options.acknowledge_on_receipt = false;
   if (!o.curve_secret_file.empty()) {
@@ -141,6 +142,7 @@ Status StartLocalWorkers(const SessionOptions& o, const Dispatcher& dispatcher,
   worker.binary = WorkerBesideThisProgram();
   worker.endpoint = dispatcher.endpoint();
   worker.threads = 1;
+  worker.exit_when_done = true;
   worker.log_path = o.worker_log;
   Status status = workers->Start(o.local_workers, worker);
   if (!status.ok()) return status;
@@ -158,6 +160,8 @@ Status Serve(EvolutionRun* run, Dispatcher* dispatcher, const SessionOptions& o,
   status = run->Run(dispatcher, stop, o.progress);
   if (!status.ok()) return status;
   if (run->finished()) {
+    // Workers started for this run may go (--exit-when-done).
+    dispatcher->Farewell("the run is finished");
     o.log("finished; the best: animat lineage best --db " + o.db_path);
   } else {
     o.log("stopped; resume with: " + o.resume_command);

@@ -3,7 +3,8 @@
 // failed start leaves the store as it was; a resume never asks for fewer
 // generations than the run has made; a stopped master prints the whole
 // command that continues it, and that command, run as printed, does; a
-// malformed endpoint is a usage error in both programs.
+// malformed endpoint is a usage error in both programs; workers told the
+// run is finished leave with --exit-when-done.
 #include <csignal>
 #include <filesystem>
 #include <memory>
@@ -187,6 +188,33 @@ TEST_F(StartupTest, MalformedEndpointsAreUsageErrorsInBothPrograms) {
       EXPECT_EQ(error.find("terminate"), std::string::npos) << error;
     }
     EXPECT_FALSE(std::filesystem::exists(db)) << endpoint;
+  }
+}
+
+TEST_F(StartupTest, WorkersThatExitWhenDoneLeaveWithTheFinishedRun) {
+  TestRun run;
+  run.seed = 7;
+  run.generations = 2;
+  const std::string db = Path("done.db");
+  std::unique_ptr<ChildProcess> master =
+      StartRun(WriteConfig("run.txtpb", run), db);
+  std::vector<std::unique_ptr<WorkerProcess>> workers;
+  for (int i = 0; i < 2; ++i) {
+    WorkerArgs args;
+    args.endpoint = Endpoint();
+    args.heartbeat_ms = kMasterHeartbeatMs;
+    args.exit_when_done = true;
+    workers.push_back(std::make_unique<WorkerProcess>(args));
+  }
+  ASSERT_TRUE(AwaitExit(*master, kRunWait, "the run"));
+  ASSERT_EQ(master->exit_code(), 0) << master->output();
+  ASSERT_TRUE(ReadProgress(db).finished);
+  for (auto& worker : workers) {
+    ASSERT_TRUE(AwaitExit(*worker, kStepWait, "a worker after the run"));
+    EXPECT_EQ(worker->exit_code(), 0) << worker->output();
+    EXPECT_NE(worker->output().find("exiting (--exit-when-done)"),
+              std::string::npos)
+        << worker->output();
   }
 }
 
