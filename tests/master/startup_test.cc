@@ -164,6 +164,31 @@ TEST_F(StartupTest, TheResumeHintIsTheWholeCommandAndWorksAsPrinted) {
   EXPECT_TRUE(ReadProgress(db).finished) << ReadProgress(db).ToString();
 }
 
+TEST_F(StartupTest, TheResumeHintKeepsTheKeysAndQuotesWhatNeedsIt) {
+  std::unique_ptr<ChildProcess> keygen =
+      StartAnimat({"keygen", "--cluster", Path("keys")});
+  ASSERT_TRUE(AwaitExit(*keygen, kStepWait, "keygen"));
+  ASSERT_EQ(keygen->exit_code(), 0) << keygen->output();
+  const std::string db = Path("keys run.db");  // A space: quoted.
+  std::unique_ptr<ChildProcess> master =
+      StartMaster({"--config", WriteConfig("run.txtpb", TestRun()), "--db", db,
+                   "--curve-secret", Path("keys/master.key"), "--curve-allow",
+                   Path("keys/workers.allow")},
+                  "tcp://127.0.0.1:*");
+  ASSERT_TRUE(AwaitOutput(*master, "run 1 started")) << master->output();
+  ASSERT_TRUE(master->Signal(SIGTERM));
+  ASSERT_TRUE(AwaitExit(*master, kStepWait, "SIGTERM"));
+  ASSERT_EQ(master->exit_code(), 0) << master->output();
+  EXPECT_NE(master->standard_error().find(
+                "stopped; resume with: animat-master --resume --db '" + db +
+                "' --bind 'tcp://127.0.0.1:*' --curve-secret " +
+                Path("keys/master.key") + " --curve-allow " +
+                Path("keys/workers.allow") + " --heartbeat-ms " +
+                std::to_string(kMasterHeartbeatMs) + "\n"),
+            std::string::npos)
+      << master->output();
+}
+
 TEST_F(StartupTest, MalformedEndpointsAreUsageErrorsInBothPrograms) {
   const std::string config = WriteConfig("run.txtpb", TestRun());
   const std::string db = Path("never.db");
