@@ -37,6 +37,10 @@ bool Exists(const std::string& path) { return access(path.c_str(), F_OK) == 0; }
 // What can be said of the request without reading any file; a mistyped
 // path must not leave an empty store behind.
 Status CheckRequest(const SessionOptions& o) {
+  // (An empty path would be a private in-memory store, lost at exit.)
+  if (o.db_path.empty()) {
+    return Status::InvalidArgument("--db needs the path of a lineage store");
+  }
   switch (o.choice) {
     case RunChoice::kStart:
       if (o.config_path.empty()) {

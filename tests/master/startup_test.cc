@@ -216,6 +216,79 @@ TEST_F(StartupTest, MalformedEndpointsAreUsageErrorsInBothPrograms) {
   }
 }
 
+TEST_F(StartupTest, EveryFlagRefusesMalformedValuesWithAMessage) {
+  const std::string config = WriteConfig("run.txtpb", TestRun());
+  const std::string db = Path("flags.db");
+  const std::string junk = Path("junk.txtpb");
+  ASSERT_TRUE(WriteFile(junk, "not { a config").ok());
+  const std::string missing = Path("missing/file");
+  const std::string huge(5000, '7');
+  const std::string master_bin = std::string(ANIMAT_BIN_DIR) + "/animat-master";
+  const std::string worker_bin = std::string(ANIMAT_BIN_DIR) + "/animat-worker";
+  // Each case: the program's arguments, every other one valid (so that
+  // only the malformed value can stop it).
+  const std::vector<std::string> master = {
+      master_bin, "--config", config, "--db", db, "--bind", Endpoint()};
+  const std::vector<std::string> worker = {worker_bin, "--connect", Endpoint()};
+  std::vector<std::vector<std::string>> cases;
+  const auto with = [&](std::vector<std::string> base,
+                        const std::vector<std::string>& more) {
+    // A later value of a flag already given replaces it (CLI11 keeps the
+    // last): drop the base's.
+    for (size_t i = 1; i + 1 < base.size(); i += 2) {
+      if (base[i] == more[0])
+        base.erase(base.begin() + i, base.begin() + i + 2);
+    }
+    base.insert(base.end(), more.begin(), more.end());
+    cases.push_back(base);
+  };
+  for (const std::string& value : {std::string(), missing, junk, Path("")}) {
+    with(master, {"--config", value});
+  }
+  for (const std::string& value : {std::string(), missing, Path("")}) {
+    with(master, {"--db", value});
+  }
+  for (const std::string& value :
+       {std::string("0"), std::string("-1"), std::string("abc"),
+        std::string("1e9"), huge}) {
+    with(master, {"--generations", value});
+    with(master, {"--heartbeat-ms", value});
+    with(worker, {"--threads", value});
+    with(worker, {"--heartbeat-ms", value});
+  }
+  for (const std::string& value :
+       {std::string("-1"), std::string("abc"), huge}) {
+    with(worker, {"--idle-timeout", value});
+  }
+  with(master, {"--curve-secret", missing, "--curve-allow", missing});
+  with(master, {"--curve-secret", junk, "--curve-allow", junk});
+  with(master, {"--curve-secret", missing});
+  with(master, {"--resume=yes"});
+  with(master, {"--no-such-flag"});
+  with(worker, {"--curve-server", missing, "--curve-secret", missing});
+  with(worker, {"--curve-server", junk, "--curve-secret", junk});
+  with(worker, {"--exit-when-done=maybe"});
+  with(worker, {"--no-such-flag"});
+  with(worker, {"--connect", huge});
+
+  for (const std::vector<std::string>& argv : cases) {
+    std::string line;
+    for (const std::string& word : argv) {
+      line += " " + (word.size() > 40 ? word.substr(0, 40) + "..." : word);
+    }
+    SCOPED_TRACE(line);
+    ChildProcess process("flags", argv, ChildProcess::Lifetime::kExitsByItself);
+    ASSERT_TRUE(AwaitExit(process, kStepWait, line));
+    EXPECT_EQ(process.term_signal(), 0) << process.Describe();
+    EXPECT_TRUE(process.exit_code() == 1 || process.exit_code() == 2)
+        << process.Describe() << "\n"
+        << process.output();
+    const std::string error = process.standard_error();
+    EXPECT_FALSE(error.empty());
+    EXPECT_EQ(error.find("terminate"), std::string::npos) << error;
+  }
+}
+
 TEST_F(StartupTest, WorkersThatExitWhenDoneLeaveWithTheFinishedRun) {
   TestRun run;
   run.seed = 7;
