@@ -9,6 +9,7 @@
 #include <zmq.hpp>
 
 #include "common/evaluation/model_config.h"
+#include "common/protocol/endpoint.h"
 #include "common/security/curve_keys.h"
 #include "master/dispatch/dispatcher.h"
 #include "master/lineage/store.h"
@@ -75,6 +76,9 @@ Result<std::optional<RunSettings>> ReadSettings(const SessionOptions& o) {
 
 // The dispatcher's options, the keys read and the endpoint checked.
 Result<DispatcherOptions> ListenOptions(const SessionOptions& o) {
+  Status endpoint =
+      protocol::CheckEndpoint(o.bind, protocol::EndpointUse::kBind);
+  if (!endpoint.ok()) return endpoint.WithPrefix("--bind");
   DispatcherOptions options;
   options.endpoint = o.bind;
   options.heartbeat_ms = o.heartbeat_ms;
