@@ -42,6 +42,16 @@ uint64_t HashFinalState(const MotionState& state, const GrnBatchT<S>& grn) {
   return hash.value();
 }
 
+// What selection maximises (model §10.1): the distance, or the distance
+// scaled down by the energy beyond the budget, d * (B / E).
+double Objective(const EvaluationParams& ev, double distance, double energy) {
+  if (ev.fitness == FitnessKind::kDistanceWithinEnergyBudget &&
+      energy > ev.energy_budget) {
+    return distance * (ev.energy_budget / energy);
+  }
+  return distance;
+}
+
 bool CheckDue(int step, int last, int interval) {
   return step % interval == 0 || step == last;
 }
@@ -203,7 +213,8 @@ EvaluationResult RunModel(const Network& network, const ModelConfig& config,
   }
   EvaluationResult result;
   result.status = EvalStatus::kOk;
-  result.fitness = fitness;
+  result.fitness = Objective(ev, fitness, energy);
+  result.distance = fitness;
   result.energy = energy;
   result.cells = cells;
   result.steps = steps;
@@ -243,6 +254,7 @@ v1::EvaluationResult EvaluationResultToProto(const EvaluationResult& r) {
   m.set_reason(r.reason);
   if (r.fitness) m.set_fitness(*r.fitness);
   if (r.energy) m.set_energy(*r.energy);
+  if (r.distance) m.set_distance(*r.distance);
   m.set_cells(r.cells);
   m.set_steps(r.steps);
   m.set_state_hash(r.state_hash);

@@ -41,10 +41,12 @@ const char* EvalStatusName(EvalStatus status);
 
 struct EvaluationResult {
   EvalStatus status = EvalStatus::kOk;
-  std::string reason;             // Why, when status is not kOk.
-  std::optional<double> fitness;  // Distance moved; only when kOk.
-  int cells = 0;                  // Cells at the end of development.
-  int64_t steps = 0;              // Simulation steps run, all phases.
+  std::string reason;  // Why, when status is not kOk.
+  // What selection maximises (EvaluationParams::fitness): the distance
+  // moved, or the distance within an energy budget; only when kOk.
+  std::optional<double> fitness;
+  int cells = 0;      // Cells at the end of development.
+  int64_t steps = 0;  // Simulation steps run, all phases.
   // Hash of the bits of the final positions, velocities and network levels
   // (0 when motion did not run to the end).
   uint64_t state_hash = 0;
@@ -55,6 +57,9 @@ struct EvaluationResult {
   // SoftBody::actuation_work), in the model's force times length units;
   // only when kOk.
   std::optional<double> energy;
+  // The distance the centre of mass moved over the motion phase (radii);
+  // only when kOk. Equals fitness under the paper's fitness.
+  std::optional<double> distance;
 };
 
 v1::EvaluationResult EvaluationResultToProto(const EvaluationResult& result);

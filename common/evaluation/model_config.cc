@@ -20,6 +20,22 @@ Status EvaluationParamsFromProto(const v1::EvaluationConfig& m,
   if (m.has_max_coordinate()) p.max_coordinate = m.max_coordinate();
   if (m.has_check_interval()) p.check_interval = m.check_interval();
   if (m.has_min_chambers()) p.min_chambers = m.min_chambers();
+  if (m.has_fitness()) {
+    switch (m.fitness()) {
+      case v1::EvaluationConfig::FITNESS_UNSPECIFIED:
+        break;
+      case v1::EvaluationConfig::DISTANCE:
+        p.fitness = FitnessKind::kDistance;
+        break;
+      case v1::EvaluationConfig::DISTANCE_WITHIN_ENERGY_BUDGET:
+        p.fitness = FitnessKind::kDistanceWithinEnergyBudget;
+        break;
+      default:
+        return Status::InvalidArgument("evaluation.fitness: unknown value " +
+                                       std::to_string(m.fitness()));
+    }
+  }
+  if (m.has_energy_budget()) p.energy_budget = m.energy_budget();
   Status status = FirstError({
       RequireIntInRange("evaluation.equilibration_steps", p.equilibration_steps,
                         0, 100000000),
@@ -31,6 +47,7 @@ Status EvaluationParamsFromProto(const v1::EvaluationConfig& m,
       RequireIntInRange("evaluation.check_interval", p.check_interval, 1,
                         100000000),
       RequireIntInRange("evaluation.min_chambers", p.min_chambers, 0, 1000),
+      RequirePositive("evaluation.energy_budget", p.energy_budget),
   });
   if (!status.ok()) return status;
   *params = p;
@@ -38,6 +55,16 @@ Status EvaluationParamsFromProto(const v1::EvaluationConfig& m,
 }
 
 }  // namespace
+
+const char* FitnessKindName(FitnessKind kind) {
+  switch (kind) {
+    case FitnessKind::kDistance:
+      return "distance";
+    case FitnessKind::kDistanceWithinEnergyBudget:
+      return "distance_within_energy_budget";
+  }
+  return "?";
+}
 
 Status ConfigFromProto(const v1::Config& message, ModelConfig* config) {
   ModelConfig c = *config;
@@ -66,6 +93,10 @@ v1::Config ConfigToProto(const ModelConfig& c) {
   e->set_max_coordinate(c.evaluation.max_coordinate);
   e->set_check_interval(c.evaluation.check_interval);
   e->set_min_chambers(c.evaluation.min_chambers);
+  e->set_fitness(c.evaluation.fitness == FitnessKind::kDistance
+                     ? v1::EvaluationConfig::DISTANCE
+                     : v1::EvaluationConfig::DISTANCE_WITHIN_ENERGY_BUDGET);
+  e->set_energy_budget(c.evaluation.energy_budget);
   return m;
 }
 

@@ -14,6 +14,14 @@
 namespace animat {
 
 // The evaluation schedule and failure checks (model §8).
+// What selection maximises (docs/model.md §10.1).
+enum class FitnessKind {
+  kDistance,                    // The paper's.
+  kDistanceWithinEnergyBudget,  // distance * min(1, budget / energy).
+};
+// "distance", "distance_within_energy_budget".
+const char* FitnessKindName(FitnessKind kind);
+
 struct EvaluationParams {
   int equilibration_steps = 200;       // Network stopped.
   double equilibration_damping = 0.9;  // v *= this after each such step.
@@ -21,6 +29,10 @@ struct EvaluationParams {
   double max_coordinate = 1e6;         // Beyond: numerical failure.
   int check_interval = 100;            // Steps between state checks.
   int min_chambers = 1;  // Fewer chambers: a degenerate body (model §6.5).
+  FitnessKind fitness = FitnessKind::kDistance;
+  // B of kDistanceWithinEnergyBudget, > 0: about the median work of
+  // swimmers evolved for distance alone (docs/model.md §10.1).
+  double energy_budget = 10000.0;
 };
 
 struct ModelConfig {

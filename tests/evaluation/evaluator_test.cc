@@ -145,6 +145,34 @@ TEST(EvaluatorTest, EnergyIsTheMotionPhasesActuationWork) {
   EXPECT_FALSE(EvaluationResultToProto(failed).has_energy());
 }
 
+TEST(EvaluatorTest, TheEnergyBudgetScalesDistanceDownBeyondIt) {
+  ModelConfig config = ShortConfig();
+  const Genome genome = LoadGenome("seed-1198.json");
+  const EvaluationResult plain = Evaluate(genome, config);
+  ASSERT_EQ(plain.status, EvalStatus::kOk);
+  ASSERT_TRUE(plain.distance && plain.energy);
+  // The paper's fitness is the distance, bit for bit.
+  EXPECT_EQ(*plain.fitness, *plain.distance);
+  config.evaluation.fitness = FitnessKind::kDistanceWithinEnergyBudget;
+  // Within the budget: the distance.
+  config.evaluation.energy_budget = *plain.energy * 2;
+  const EvaluationResult within = Evaluate(genome, config);
+  EXPECT_EQ(*within.fitness, *plain.distance);
+  // Beyond it: d * (B / E), and the distance and energy unchanged.
+  config.evaluation.energy_budget = *plain.energy / 4;
+  const EvaluationResult beyond = Evaluate(genome, config);
+  EXPECT_EQ(
+      *beyond.fitness,
+      *plain.distance * (config.evaluation.energy_budget / *plain.energy));
+  EXPECT_LT(*beyond.fitness, *plain.distance);
+  EXPECT_EQ(*beyond.distance, *plain.distance);
+  EXPECT_EQ(*beyond.energy, *plain.energy);
+  EXPECT_EQ(beyond.state_hash, plain.state_hash);
+  const v1::EvaluationResult m = EvaluationResultToProto(beyond);
+  EXPECT_EQ(m.fitness(), *beyond.fitness);
+  EXPECT_EQ(m.distance(), *plain.distance);
+}
+
 TEST(EvaluatorTest, RunawayMotionIsANumericalFailure) {
   // Springs far beyond the explicit stability limit blow up; the evaluation
   // must say so instead of returning a number.
@@ -300,7 +328,7 @@ TEST(EvaluatorTest, ResultConvertsToProto) {
   ASSERT_TRUE(m.has_fitness());  // A fitness of 0 is still present.
   EXPECT_EQ(m.fitness(), 0.0);
   EXPECT_EQ(EvaluationResultToProto(
-                {EvalStatus::kInvalidGenome, "", {}, 0, 0, 0, {}, {}})
+                {EvalStatus::kInvalidGenome, "", {}, 0, 0, 0, {}, {}, {}})
                 .status(),
             v1::EvaluationResult::INVALID_GENOME);
 }

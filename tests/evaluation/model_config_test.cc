@@ -53,6 +53,8 @@ TEST(ModelConfigTest, DefaultsAreModelValues) {
   EXPECT_EQ(c.evaluation.motion_steps, 6000);
   EXPECT_EQ(c.evaluation.max_coordinate, 1e6);
   EXPECT_EQ(c.evaluation.check_interval, 100);
+  EXPECT_EQ(c.evaluation.fitness, FitnessKind::kDistance);
+  EXPECT_EQ(c.evaluation.energy_budget, 10000.0);
 }
 
 TEST(ModelConfigTest, AbsentFieldsKeepDefaultsAndPresentOnesOverride) {
@@ -72,6 +74,8 @@ TEST(ModelConfigTest, RoundTripsThroughProto) {
   config.physics.pressure = 3.5;
   config.signals.max_delay = 17;
   config.development.size_gain = 0.25;
+  config.evaluation.fitness = FitnessKind::kDistanceWithinEnergyBudget;
+  config.evaluation.energy_budget = 123.5;
   ModelConfig back;
   ASSERT_TRUE(ConfigFromProto(ConfigToProto(config), &back).ok());
   EXPECT_EQ(SerializeProto(ConfigToProto(back), ProtoFormat::kText),
@@ -137,6 +141,13 @@ TEST(ModelConfigTest, RejectsInvalidConstantsNamingTheField) {
   m.Clear();
   m.mutable_evaluation()->set_max_coordinate(nan);
   ExpectRejected(m, "evaluation.max_coordinate");
+  m.Clear();
+  m.mutable_evaluation()->set_energy_budget(0.0);
+  ExpectRejected(m, "evaluation.energy_budget");
+  m.Clear();
+  m.mutable_evaluation()->set_fitness(
+      static_cast<v1::EvaluationConfig::Fitness>(99));
+  ExpectRejected(m, "evaluation.fitness");
 }
 
 TEST(ModelConfigTest, ReadConfigFileNamesTheFileAndField) {
