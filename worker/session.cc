@@ -102,14 +102,8 @@ void Worker::Session::SayGoodbye() {
       unsent.push_back(std::move(r));
     }
   }
-  if (!unsent.empty()) {
-    v1::Envelope results;
-    for (v1::WorkResult& r : unsent) {
-      *results.mutable_results()->add_results() = std::move(r);
-    }
-    unsent.clear();
-    Send(results);
-  }
+  // In messages of up to kMaxBatch, without credit (stopping).
+  if (!unsent.empty()) SendResults();
   v1::Envelope goodbye;
   for (uint64_t id : returned_) goodbye.mutable_goodbye()->add_returned(id);
   goodbye.mutable_goodbye()->set_reason("worker stopping");

@@ -54,10 +54,9 @@ Status CheckRange(const std::string& field, uint64_t value, uint64_t min,
 template <typename List>
 Status CheckCount(const std::string& field, const List& list, int limit) {
   if (list.size() <= limit) return Status::Ok();
-  return Status::InvalidArgument(field + " holds " +
-                                 std::to_string(list.size()) +
-                                 ", above the limit of " +
-                                 std::to_string(limit));
+  return Status::InvalidArgument(
+      field + " holds " + std::to_string(list.size()) +
+      ", above the limit of " + std::to_string(limit));
 }
 
 // `ids` (a repeated uint64 of individuals): at most `limit`, each in range.
@@ -101,12 +100,10 @@ Status CheckWork(const v1::Work& work) {
 // that one bad result does not cost the others; but not their number, nor
 // an individual no store could hold.
 Status CheckResults(const v1::Results& results) {
-  Status status =
-      CheckCount("results.results", results.results(), kMaxBatch);
+  Status status = CheckCount("results.results", results.results(), kMaxBatch);
   for (int i = 0; status.ok() && i < results.results_size(); ++i) {
-    status =
-        CheckRange("results.results[" + std::to_string(i) + "].individual",
-                   results.results(i).individual(), 0, kMaxIndividual);
+    status = CheckRange("results.results[" + std::to_string(i) + "].individual",
+                        results.results(i).individual(), 0, kMaxIndividual);
   }
   return status;
 }
@@ -149,8 +146,7 @@ Status CheckEnvelope(const v1::Envelope& e) {
     case v1::Envelope::kWelcome:
       return CheckWelcome(e.welcome());
     case v1::Envelope::kRefuse:
-      return CheckString("refuse.reason", e.refuse().reason(),
-                         kMaxReasonBytes);
+      return CheckString("refuse.reason", e.refuse().reason(), kMaxReasonBytes);
     case v1::Envelope::kCredit:
       return CheckRange("credit.credit", e.credit().credit(), 1, kMaxCredit);
     case v1::Envelope::kWork:

@@ -43,20 +43,27 @@ Result<std::unique_ptr<ChildIsolation>> ChildIsolation::Create(
   if (options.command.empty()) {
     return Status::InvalidArgument("no program to evaluate genomes alone");
   }
+  return std::unique_ptr<ChildIsolation>(
+      new ChildIsolation(std::move(options)));
+}
+
+Status ChildIsolation::MakeDirectory() {
+  if (!directory_.empty()) return Status::Ok();
   const char* tmp = std::getenv("TMPDIR");
-  std::string pattern = std::string(tmp != nullptr && *tmp != '\0' ? tmp
-                                                                   : "/tmp") +
-                        "/animat-isolation-XXXXXX";
+  std::string pattern =
+      std::string(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp") +
+      "/animat-isolation-XXXXXX";
   if (mkdtemp(pattern.data()) == nullptr) {
     return Status::IoError("cannot make a directory like " + pattern +
-                           " for isolated evaluations");
+                           " for evaluations alone");
   }
-  return std::unique_ptr<ChildIsolation>(
-      new ChildIsolation(std::move(options), pattern));
+  directory_ = pattern;
+  return Status::Ok();
 }
 
 ChildIsolation::~ChildIsolation() {
   children_.clear();  // Killed and reaped (~LocalProcess).
+  if (directory_.empty()) return;
   std::error_code ignored;
   std::filesystem::remove_all(directory_, ignored);
 }
@@ -72,6 +79,8 @@ std::string ChildIsolation::ResultPath(uint64_t individual) const {
 Status ChildIsolation::Start(uint64_t individual, const std::string& item,
                              const v1::Config& config, uint64_t config_hash) {
   Cancel(individual);
+  Status made = MakeDirectory();
+  if (!made.ok()) return made;
   v1::IsolatedEvaluation request;
   request.set_build_id(protocol::BuildId());
   *request.mutable_config() = config;
@@ -99,8 +108,8 @@ Status ChildIsolation::Start(uint64_t individual, const std::string& item,
   }
   Child& child = children_[individual];
   child.process = std::move(started).value();
-  child.deadline = options_.clock->Now() +
-                   std::chrono::milliseconds(options_.time_limit_ms);
+  child.deadline =
+      options_.clock->Now() + std::chrono::milliseconds(options_.time_limit_ms);
   return Status::Ok();
 }
 

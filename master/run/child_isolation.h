@@ -3,7 +3,8 @@
 // RESULT`, started through the spawner of local_workers.h in a process
 // group of its own (so a terminal's Ctrl-C, meant for the master, does not
 // pass for a crash), its request and result in a private temporary
-// directory.
+// directory (made by the first evaluation: a master that needs none
+// leaves nothing behind, even when killed).
 //
 // A child that exits 0 with a readable result gives that result; one that
 // dies of a crash signal (SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT,
@@ -41,8 +42,9 @@ struct ChildIsolationOptions {
 
 class ChildIsolation final : public Isolation {
  public:
-  // Makes the temporary directory (under $TMPDIR, else /tmp); kIoError
-  // when it cannot.
+  // kInvalidArgument without a command. The directory (under $TMPDIR,
+  // else /tmp) is made by the first Start, which fails with kIoError when
+  // it cannot.
   static Result<std::unique_ptr<ChildIsolation>> Create(
       ChildIsolationOptions options);
   ~ChildIsolation() override;
@@ -60,8 +62,9 @@ class ChildIsolation final : public Isolation {
     std::unique_ptr<LocalProcess> process;
     Clock::TimePoint deadline;
   };
-  ChildIsolation(ChildIsolationOptions options, std::string directory)
-      : options_(std::move(options)), directory_(std::move(directory)) {}
+  explicit ChildIsolation(ChildIsolationOptions options)
+      : options_(std::move(options)) {}
+  Status MakeDirectory();
   std::string RequestPath(uint64_t individual) const;
   std::string ResultPath(uint64_t individual) const;
   // The outcome of a child that has exited.
@@ -69,7 +72,7 @@ class ChildIsolation final : public Isolation {
   void RemoveFiles(uint64_t individual);
 
   ChildIsolationOptions options_;
-  std::string directory_;
+  std::string directory_;  // "" until the first Start.
   std::map<uint64_t, Child> children_;
 };
 

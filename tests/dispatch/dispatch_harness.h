@@ -287,13 +287,16 @@ class DispatchTest : public ::testing::Test {
   }
 
   // `options` with an Isolation (isolation_) that runs `command` (by
-  // default the animat-worker of ANIMAT_BIN_DIR) on the options' clock.
+  // default the animat-worker of ANIMAT_BIN_DIR) on the options' clock,
+  // with a time limit of kLongWait (leases in tests are short, and a
+  // child on a loaded machine slow).
   DispatcherOptions WithIsolation(DispatcherOptions options,
                                   std::vector<std::string> command = {
                                       std::string(ANIMAT_BIN_DIR) +
                                       "/animat-worker"}) {
     Result<std::unique_ptr<ChildIsolation>> isolation = ChildIsolation::Create(
-        {std::move(command), options.lease_ms, options.clock});
+        {std::move(command), static_cast<int>(kLongWait.count()),
+         options.clock});
     EXPECT_TRUE(isolation.ok()) << isolation.status().ToString();
     if (isolation.ok()) isolation_ = std::move(isolation).value();
     options.isolation = isolation_.get();

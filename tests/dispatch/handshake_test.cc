@@ -69,8 +69,13 @@ class HandshakeTest : public DispatchTest {
   std::unique_ptr<ChildProcess> StartWorker(const std::string& server,
                                             const std::string& client) {
     std::vector<std::string> argv = {
-        std::string(ANIMAT_BIN_DIR) + "/animat-worker", "--connect",
-        dispatcher_->endpoint(), "--threads", "1", "--heartbeat-ms", "100"};
+        std::string(ANIMAT_BIN_DIR) + "/animat-worker",
+        "--connect",
+        dispatcher_->endpoint(),
+        "--threads",
+        "1",
+        "--heartbeat-ms",
+        "100"};
     if (!client.empty()) {
       argv.insert(argv.end(), {"--curve-server", dir_ + "/" + server + ".pub",
                                "--curve-secret", dir_ + "/" + client + ".key"});
@@ -147,8 +152,9 @@ TEST_F(HandshakeTest, AnotherMastersPublicKeyIsSaidOnBothSides) {
 TEST_F(HandshakeTest, WorkerWithKeysAgainstAPlainMasterIsToldWhy) {
   ASSERT_TRUE(StartMaster(/*curve=*/false));
   std::unique_ptr<ChildProcess> worker = StartWorker("master", "worker");
-  ExpectEachSideSaysItOnce(*worker, "does not use CurveZMQ",
-                           {"that asked for CurveZMQ: this master has no keys"});
+  ExpectEachSideSaysItOnce(
+      *worker, "does not use CurveZMQ",
+      {"that asked for CurveZMQ: this master has no keys"});
 }
 
 TEST_F(HandshakeTest, WorkerWithTheRightKeysIsServedAndNothingIsSaid) {

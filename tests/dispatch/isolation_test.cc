@@ -33,8 +33,8 @@ class IsolationTest : public DispatchTest {
       ASSERT_TRUE(Serve([&] { return fake.welcomed(); }, kShortWait,
                         [&] { fake.Pump(); }));
       fake.Credit(1);
-      ASSERT_TRUE(Serve([&] { return !fake.work_items().empty(); },
-                        kShortWait, [&] { fake.Pump(); }));
+      ASSERT_TRUE(Serve([&] { return !fake.work_items().empty(); }, kShortWait,
+                        [&] { fake.Pump(); }));
       ASSERT_EQ(fake.work_items()[0].individual(), id);
     }
     ASSERT_TRUE(Serve(
@@ -62,8 +62,8 @@ TEST_F(IsolationTest, SuspectThatCrashesAloneTooIsRecordedAsCrashed) {
   // A genome of this simulator never crashes its process; a child that
   // dies of SIGSEGV is what such a genome would make of its evaluation.
   const Individual suspect = Population({DataGenome("seed-139")}, 20)[0];
-  ASSERT_TRUE(StartDispatcher(WithIsolation(
-      SimulatedOptions(), {"/bin/sh", "-c", "kill -SEGV $$"})));
+  ASSERT_TRUE(StartDispatcher(
+      WithIsolation(SimulatedOptions(), {"/bin/sh", "-c", "kill -SEGV $$"})));
   Submit({suspect});
   for (int round = 1; round <= protocol::kMaxAttempts; ++round) {
     SCOPED_TRACE("round " + std::to_string(round));
@@ -131,8 +131,9 @@ TEST_F(IsolationTest, WithoutAnIsolationASuspectIsRetriedOnWorkersForEver) {
     VanishHolding(suspect.id, 8300 + round);
   }
   EXPECT_EQ(CompletionsOf(suspect.id), 0);
-  EXPECT_EQ(log_.Count({"individual 40: ", "retried on workers (no isolation "
-                                           "here)"}),
+  EXPECT_EQ(log_.Count({"individual 40: ",
+                        "retried on workers (no isolation "
+                        "here)"}),
             3)
       << log_.Dump();
   AnswerTheRest(8399);

@@ -76,8 +76,10 @@ TEST_F(DispatchTest, MasterRefusesEveryNumericFieldOutOfRangeSayingWhy) {
   returned_beyond.mutable_goodbye()->add_returned(kBeyondIndividuals);
 
   const std::string malformed = "ignored a malformed message from " + name;
-  const std::string invalid = "ignored an invalid result for individual 1 "
-                              "from " + name;
+  const std::string invalid =
+      "ignored an invalid result for individual 1 "
+      "from " +
+      name;
   const std::vector<Case> cases = {
       {"hello.threads 0", Hello([](v1::Hello* h) { h->set_threads(0); }),
        "hello.threads 0 outside [1, 65536]"},
@@ -98,9 +100,7 @@ TEST_F(DispatchTest, MasterRefusesEveryNumericFieldOutOfRangeSayingWhy) {
       {"257 results", too_many_results,
        "results.results holds 257, above the limit of 256"},
       {"a result for individual 2^63",
-       result([](v1::WorkResult* r) {
-         r->set_individual(kBeyondIndividuals);
-       }),
+       result([](v1::WorkResult* r) { r->set_individual(kBeyondIndividuals); }),
        "results.results[0].individual 9223372036854775808 outside [0, "
        "9223372036854775807]"},
       {"a result of -1 cells",
@@ -112,32 +112,27 @@ TEST_F(DispatchTest, MasterRefusesEveryNumericFieldOutOfRangeSayingWhy) {
       {"a negative fitness",
        result([](v1::WorkResult* r) { r->mutable_result()->set_fitness(-2); }),
        "fitness -2"},
-      {"an infinite fitness",
-       result([](v1::WorkResult* r) {
+      {"an infinite fitness", result([](v1::WorkResult* r) {
          r->mutable_result()->set_fitness(
              std::numeric_limits<double>::infinity());
        }),
        "fitness inf"},
-      {"a negative skin edge count",
-       result([](v1::WorkResult* r) {
+      {"a negative skin edge count", result([](v1::WorkResult* r) {
          r->mutable_result()->mutable_body()->set_skin_edges(-5);
        }),
        "body skin_edges -5"},
-      {"a negative spread",
-       result([](v1::WorkResult* r) {
+      {"a negative spread", result([](v1::WorkResult* r) {
          r->mutable_result()->mutable_body()->set_spread_minor(-0.5);
        }),
        "body spread_minor -0.5"},
       {"a negative wall time",
        result([](v1::WorkResult* r) { r->set_wall_seconds(-1); }),
        "wall time -1"},
-      {"a NaN wall time",
-       result([](v1::WorkResult* r) {
+      {"a NaN wall time", result([](v1::WorkResult* r) {
          r->set_wall_seconds(std::numeric_limits<double>::quiet_NaN());
        }),
        "wall time nan"},
-      {"an unknown status",
-       result([](v1::WorkResult* r) {
+      {"an unknown status", result([](v1::WorkResult* r) {
          r->mutable_result()->set_status(
              static_cast<v1::EvaluationResult::Status>(-4));
        }),
@@ -152,8 +147,11 @@ TEST_F(DispatchTest, MasterRefusesEveryNumericFieldOutOfRangeSayingWhy) {
     const size_t from = log_.size();
     const int64_t ignored = dispatcher_->stats().ignored;
     peer.Send(c.envelope);
-    ASSERT_TRUE(Serve([&] { return log_.Count({"ignored", c.reason}, from); },
-                      kShortWait, pump))
+    ASSERT_TRUE(Serve(
+        [&] {
+          return log_.Count({"ignored", c.reason}, from);
+        },
+        kShortWait, pump))
         << log_.Dump(from);
     ServeFor(milliseconds(20), pump);  // A second line would show now.
     EXPECT_EQ(log_.size(), from + 1) << log_.Dump(from);
@@ -215,7 +213,8 @@ TEST_F(DispatchTest, WorkerRefusesEveryNumericFieldOutOfRangeSayingWhy) {
     return envelope;
   };
   const std::vector<Case> cases = {
-      {"heartbeat 0", welcome(0), "welcome.heartbeat_ms 0 outside [10, 600000]"},
+      {"heartbeat 0", welcome(0),
+       "welcome.heartbeat_ms 0 outside [10, 600000]"},
       {"heartbeat 9", welcome(9), "welcome.heartbeat_ms 9 outside"},
       {"heartbeat 600001", welcome(600001),
        "welcome.heartbeat_ms 600001 outside"},
@@ -238,12 +237,11 @@ TEST_F(DispatchTest, WorkerRefusesEveryNumericFieldOutOfRangeSayingWhy) {
   // Then a welcome within the limits: the worker asks for work, and does
   // what it is given.
   master.Send(id, welcome(1000));
-  ASSERT_TRUE(master
-                  .ReceiveEnvelope(id, kShortWait,
-                                   [](const v1::Envelope& e) {
-                                     return e.has_credit();
-                                   })
-                  .has_value())
+  ASSERT_TRUE(
+      master
+          .ReceiveEnvelope(id, kShortWait,
+                           [](const v1::Envelope& e) { return e.has_credit(); })
+          .has_value())
       << worker.output();
   master.Send(id, work(1, 5));
   const std::optional<RoutedMessage> results = master.ReceiveEnvelope(
@@ -257,9 +255,9 @@ TEST_F(DispatchTest, WorkerRefusesEveryNumericFieldOutOfRangeSayingWhy) {
 
   const std::string log = worker.output();
   for (const Case& c : cases) {
-    EXPECT_NE(log.find("ignored a malformed message from the master: " +
-                       c.reason),
-              std::string::npos)
+    EXPECT_NE(
+        log.find("ignored a malformed message from the master: " + c.reason),
+        std::string::npos)
         << c.what << "\n"
         << log;
   }
@@ -318,8 +316,8 @@ TEST_F(DispatchTest, HugeHelloIsRefusedWithoutStallingTheMasterOrItsLog) {
       // Within the socket's limit: refused by its size, unparsed.
       EXPECT_EQ(log_.Count({"ignored a malformed message from an unknown "
                             "peer: a hello of " +
-                                std::to_string(hello.size()) +
-                                " bytes, above the limit of 4096"},
+                            std::to_string(hello.size()) +
+                            " bytes, above the limit of 4096"},
                            from),
                 1)
           << log_.Dump(from);
@@ -354,8 +352,7 @@ TEST_F(DispatchTest, PeersStringsReachTheLogEscapedAndCutShort) {
             std::string::npos)
       << line;
   EXPECT_NE(line.find("...:5353"), std::string::npos) << line;
-  EXPECT_NE(line.find("build \"other\\r\\nbuild\""), std::string::npos)
-      << line;
+  EXPECT_NE(line.find("build \"other\\r\\nbuild\""), std::string::npos) << line;
   EXPECT_LT(line.size(), 400u) << line;
   EXPECT_EQ(peer.refusal()->find('\n'), std::string::npos) << *peer.refusal();
 
@@ -367,9 +364,9 @@ TEST_F(DispatchTest, PeersStringsReachTheLogEscapedAndCutShort) {
   long_host.Send(long_hello);
   ASSERT_TRUE(Serve(
       [&] {
-        return log_.Count({"ignored a malformed message from an unknown peer: "
-                           "hello.host of 256 bytes, above the limit of 255"}) ==
-               1;
+        return log_.Count(
+                   {"ignored a malformed message from an unknown peer: "
+                    "hello.host of 256 bytes, above the limit of 255"}) == 1;
       },
       kShortWait, [&] { long_host.Pump(); }))
       << log_.Dump();

@@ -171,10 +171,11 @@ inline Progress ReadProgress(const std::string& path) {
 }
 
 // What a run's seed and configuration decide, table by table, in a fixed
-// order: everything but times, workers and wall times.
+// order: everything but times, workers and wall times, and the history of
+// how the run was run (run_configs: an extended run has one more change
+// than the same run made at once).
 struct StoreContents {
-  std::vector<SqlRow> runs, run_configs, individuals, parents, generations,
-      members;
+  std::vector<SqlRow> runs, individuals, parents, generations, members;
 };
 
 inline StoreContents ReadStoreContents(const std::string& path) {
@@ -191,11 +192,6 @@ inline StoreContents ReadStoreContents(const std::string& path) {
       "SELECT run_id, seed, config, config_text, config_hash, build_id, state"
       " FROM runs ORDER BY run_id",
       &contents.runs);
-  read(
-      "SELECT run_id, change, from_generation, config, config_text,"
-      " config_hash, build_id, reason FROM run_configs"
-      " ORDER BY run_id, change",
-      &contents.run_configs);
   read(
       "SELECT run_id, id, generation, operators, genome, genome_hash,"
       " elements, status, reason, fitness, cells, steps, state_hash,"
@@ -256,7 +252,6 @@ inline void ExpectSameTable(const std::string& table,
 inline void ExpectSameContents(const StoreContents& expected,
                                const StoreContents& actual) {
   ExpectSameTable("runs", expected.runs, actual.runs);
-  ExpectSameTable("run_configs", expected.run_configs, actual.run_configs);
   ExpectSameTable("individuals", expected.individuals, actual.individuals);
   ExpectSameTable("parents", expected.parents, actual.parents);
   ExpectSameTable("generations", expected.generations, actual.generations);

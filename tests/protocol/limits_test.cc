@@ -45,8 +45,7 @@ v1::Envelope Welcome(uint32_t heartbeat_ms) {
 }
 
 TEST(LimitsTest, EveryNumericFieldAtItsLimitsPasses) {
-  EXPECT_EQ(Verdict(Hello([](v1::Hello* h) { h->set_threads(1); })),
-            "decoded");
+  EXPECT_EQ(Verdict(Hello([](v1::Hello* h) { h->set_threads(1); })), "decoded");
   EXPECT_EQ(Verdict(Hello([](v1::Hello* h) {
               h->set_threads(kMaxThreads);
               h->set_pid(kMaxPid);
@@ -165,9 +164,9 @@ TEST(LimitsTest, AFrameLargerThanItsBodyMayTakeIsRefusedBeforeParsing) {
   const std::string frame = Encode(hello);
   Result<v1::Envelope> decoded = Decode(frame);
   ASSERT_FALSE(decoded.ok());
-  EXPECT_EQ(decoded.status().message(),
-            "a hello of " + std::to_string(frame.size()) +
-                " bytes, above the limit of 4096");
+  EXPECT_EQ(decoded.status().message(), "a hello of " +
+                                            std::to_string(frame.size()) +
+                                            " bytes, above the limit of 4096");
   // Unparsed: the same frame with invalid UTF-8 in the host (which a parse
   // would reject as not an Envelope) gets the same answer.
   std::string broken = frame;
@@ -204,8 +203,8 @@ TEST(LimitsTest, AResultIsCheckedWithItsWallTimeAndIndividual) {
   r.mutable_result()->set_reason("too few");
   r.set_wall_seconds(0.5);
   EXPECT_TRUE(CheckWorkResult(r).ok());
-  const std::vector<std::pair<std::function<void(v1::WorkResult*)>,
-                              std::string>>
+  const std::vector<
+      std::pair<std::function<void(v1::WorkResult*)>, std::string>>
       cases = {
           {[](v1::WorkResult* w) { w->set_individual(kBeyond); },
            "individual 9223372036854775808 outside"},
