@@ -1,6 +1,10 @@
 #include "analysis/spectrum.h"
 
+#include <unsupported/Eigen/FFT>
+
+#include <algorithm>
 #include <cmath>
+#include <complex>
 #include <numbers>
 
 #include "common/base/fast_math.h"
@@ -76,31 +80,6 @@ double WrapAngle(double radians) {
   return r;
 }
 
-void Fft(std::vector<std::complex<double>>& data) {
-  const size_t n = data.size();
-  for (size_t i = 1, j = 0; i < n; ++i) {
-    size_t bit = n >> 1;
-    for (; j & bit; bit >>= 1) j ^= bit;
-    j ^= bit;
-    if (i < j) std::swap(data[i], data[j]);
-  }
-  for (size_t length = 2; length <= n; length <<= 1) {
-    const size_t half = length / 2;
-    std::vector<std::complex<double>> w(half);
-    for (size_t k = 0; k < half; ++k) {
-      w[k] = Twiddle(static_cast<double>(k) / length);
-    }
-    for (size_t start = 0; start < n; start += length) {
-      for (size_t k = 0; k < half; ++k) {
-        const std::complex<double> u = data[start + k];
-        const std::complex<double> v = data[start + k + half] * w[k];
-        data[start + k] = u + v;
-        data[start + k + half] = u - v;
-      }
-    }
-  }
-}
-
 Component ComponentAt(std::span<const double> signal, double frequency) {
   if (signal.size() < 2) return {};
   const std::vector<double> w = HannWindow(signal.size());
@@ -134,16 +113,22 @@ std::optional<DominantFrequency> FindDominantFrequency(
   }
   if (!(variance > 0)) return std::nullopt;
 
-  // Coarse: the summed power spectrum, zero-padded to >= 4n points.
+  // Coarse: the summed power spectrum, zero-padded to >= 4n points. The
+  // length is a power of two: Eigen's FFT (kissfft) takes any length, but
+  // a prime factor p costs n·p (docs/analysis.md, "Dominant period").
   size_t size = 1;
   while (size < 4 * n) size <<= 1;
   std::vector<double> power(size / 2 + 1, 0.0);
-  std::vector<std::complex<double>> buffer(size);
+  Eigen::FFT<double> fft;
+  fft.SetFlag(Eigen::FFT<double>::HalfSpectrum);  // size / 2 + 1 values.
+  std::vector<double> padded(size, 0.0);
+  std::vector<std::complex<double>> spectrum;
   for (const std::vector<double>& d : windowed) {
-    std::fill(buffer.begin(), buffer.end(), std::complex<double>());
-    for (size_t k = 0; k < n; ++k) buffer[k] = d[k];
-    Fft(buffer);
-    for (size_t j = 0; j < power.size(); ++j) power[j] += std::norm(buffer[j]);
+    std::copy(d.begin(), d.end(), padded.begin());
+    fft.fwd(spectrum, padded);
+    for (size_t j = 0; j < power.size(); ++j) {
+      power[j] += std::norm(spectrum[j]);
+    }
   }
   size_t first = static_cast<size_t>(std::ceil(min_frequency * size));
   if (first < 1) first = 1;

@@ -7,11 +7,11 @@
 // first sample, estimated with a Hann window (which keeps a strong
 // component from leaking into its neighbours). Trigonometry uses the
 // project's SinCos, so results are the same bits on every machine of one
-// architecture. Pure functions; thread-safe.
+// architecture; the one exception is the coarse search of
+// FindDominantFrequency (below). Pure functions; thread-safe.
 #ifndef ANIMAT_ANALYSIS_SPECTRUM_H_
 #define ANIMAT_ANALYSIS_SPECTRUM_H_
 
-#include <complex>
 #include <optional>
 #include <span>
 #include <vector>
@@ -38,15 +38,14 @@ struct DominantFrequency {
 // The frequency at or above `min_frequency` where the summed power of the
 // Hann-windowed signals peaks: found on a grid four times finer than the
 // signals' own resolution, then refined to ~1e-9 relative by golden-section
-// search. Every signal must have the same length n >= 4. nullopt when every
-// signal is constant (all its values equal), or n < 4, or min_frequency
-// > 0.5.
+// search. The grid's spectrum is Eigen's FFT, whose twiddle factors come
+// from the C library's sin and cos: it only picks the grid point to refine
+// around, so results differ between machines only if two grid points'
+// powers agree to within rounding. Every signal must have the same length
+// n >= 4. nullopt when every signal is constant (all its values equal), or
+// n < 4, or min_frequency > 0.5.
 std::optional<DominantFrequency> FindDominantFrequency(
     const std::vector<std::vector<double>>& signals, double min_frequency);
-
-// In-place radix-2 discrete Fourier transform, X_j = Σ x_k e^{−2πi jk/n}.
-// Precondition: data.size() is a power of two.
-void Fft(std::vector<std::complex<double>>& data);
 
 // Wraps an angle into (−π, π].
 double WrapAngle(double radians);

@@ -5,8 +5,9 @@
 //   build/bin/animat-bench [--benchmark_filter=...]
 //
 // BM_Evaluate reports ms per full evaluation (6600 steps), with double and
-// float network arithmetic; BM_EvaluateEuler the same under the earlier
-// default integrator (semi-implicit Euler, one sub-step). BM_EvaluateFailure
+// float network arithmetic, on every instruction-set path of the kernels
+// (common/kernels/isa.h; a path the machine lacks is skipped);
+// BM_EvaluateIntegrator the same under each integrator. BM_EvaluateFailure
 // is the cost of an evaluation that fails: a non-viable network, too few
 // cells, a body without a chamber, a late division (bench/data/failing/,
 // and the reference genome with divisions required to end by step 10). The
@@ -30,6 +31,7 @@
 #include "common/evaluation/evaluator.h"
 #include "common/genome/genome_proto.h"
 #include "common/io/proto_file.h"
+#include "common/kernels/isa.h"
 #include "common/physics/bullet/bullet_stepper.h"
 #include "common/physics/soft_body.h"
 
@@ -83,8 +85,43 @@ struct Developed {
   }
 };
 
-// state.range(0): 0 double, 1 float network arithmetic.
+// Runs the benchmark on instruction-set path `isa` (common/kernels/isa.h),
+// restoring the path in use afterwards; skips a path this machine lacks.
+class OnPath {
+ public:
+  OnPath(benchmark::State& state, int64_t isa) : saved_(ActiveIsa()) {
+    const Isa path = static_cast<Isa>(isa);
+    ok_ = SelectIsa(path).ok();
+    if (!ok_) {
+      state.SkipWithError(
+          (std::string(IsaName(path)) + " not supported").c_str());
+    } else {
+      state.SetLabel(IsaName(path));
+    }
+  }
+  ~OnPath() { (void)SelectIsa(saved_); }
+  bool ok() const { return ok_; }
+
+ private:
+  Isa saved_;
+  bool ok_ = false;
+};
+
+// Every instruction-set path: 0 baseline, 1 AVX2, 2 AVX-512.
+void EveryPath(benchmark::internal::Benchmark* b, const char* first_name,
+               std::initializer_list<int64_t> firsts) {
+  b->ArgNames({first_name, "isa"});
+  for (int64_t first : firsts) {
+    for (int64_t isa : {0, 1, 2}) b->Args({first, isa});
+  }
+}
+
+// state.range(0): 0 double, 1 float network arithmetic; state.range(1):
+// the instruction-set path. The default configuration (Ralston's third
+// order, one sub-step).
 void BM_Evaluate(benchmark::State& state) {
+  OnPath path(state, state.range(1));
+  if (!path.ok()) return;
   const Genome& genome = BenchGenome();
   ModelConfig config;
   config.grn.precision =
@@ -99,23 +136,29 @@ void BM_Evaluate(benchmark::State& state) {
   state.counters["ok"] = result.status == EvalStatus::kOk;
 }
 BENCHMARK(BM_Evaluate)
-    ->ArgName("float")
-    ->Arg(0)
-    ->Arg(1)
+    ->Apply([](benchmark::internal::Benchmark* b) {
+      EveryPath(b, "float", {0, 1});
+    })
     ->Unit(benchmark::kMillisecond);
 
-void BM_EvaluateEuler(benchmark::State& state) {
+// The default configuration with another integrator (float network, the
+// path in use): state.range(0) is the Integrator (0 semi-implicit Euler,
+// the default before model v2; 2 RK4, the first default under v2).
+void BM_EvaluateIntegrator(benchmark::State& state) {
   const Genome& genome = BenchGenome();
   ModelConfig config;
-  config.physics.integrator = Integrator::kSemiImplicitEuler;
+  config.physics.integrator = static_cast<Integrator>(state.range(0));
   EvaluationResult result;
   for (auto _ : state) {
     result = Evaluate(genome, config);
     benchmark::DoNotOptimize(result);
   }
+  state.SetLabel(IntegratorName(config.physics.integrator));
   state.counters["ok"] = result.status == EvalStatus::kOk;
 }
-BENCHMARK(BM_EvaluateEuler)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EvaluateIntegrator)
+    ->DenseRange(0, 4)
+    ->Unit(benchmark::kMillisecond);
 
 // state.range(0): 0 non-viable, 1 too few cells, 2 no chamber, 3 late
 // division. The label is the status the evaluation gave.
@@ -138,6 +181,8 @@ BENCHMARK(BM_EvaluateFailure)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 
 template <typename S>
 void BM_Development(benchmark::State& state) {
+  OnPath path(state, state.range(0));
+  if (!path.ok()) return;
   const Genome& genome = BenchGenome();
   const ModelConfig config;
   const Network network = Network::Build(genome, config.grn);
@@ -147,8 +192,14 @@ void BM_Development(benchmark::State& state) {
     benchmark::DoNotOptimize(development.Run());
   }
 }
-BENCHMARK_TEMPLATE(BM_Development, double)->Unit(benchmark::kMillisecond);
-BENCHMARK_TEMPLATE(BM_Development, float)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_Development, double)
+    ->ArgName("isa")
+    ->DenseRange(0, 2)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_Development, float)
+    ->ArgName("isa")
+    ->DenseRange(0, 2)
+    ->Unit(benchmark::kMillisecond);
 
 // A body of the reference workload with mid-range actuation.
 struct PhysicsSetup {
@@ -160,7 +211,8 @@ struct PhysicsSetup {
   }
 };
 
-// state.range(0): 0 semi-implicit Euler, 1 velocity Verlet, 2 RK4.
+// state.range(0): 0 semi-implicit Euler, 1 velocity Verlet, 2 RK4, 3 SSPRK3,
+// 4 Ralston's third order.
 void BM_PhysicsStep(benchmark::State& state) {
   PhysicsSetup setup;
   PhysicsParams params;
@@ -177,7 +229,7 @@ void BM_PhysicsStep(benchmark::State& state) {
   state.counters["chambers"] = setup.d.body.chambers.size();
   state.counters["skin"] = setup.d.body.skin.size();
 }
-BENCHMARK(BM_PhysicsStep)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PhysicsStep)->DenseRange(0, 4)->Unit(benchmark::kMicrosecond);
 
 // state.range(0): 0 springs, 1 pressure, 2 drag, alone.
 void BM_PhysicsForces(benchmark::State& state) {
@@ -227,14 +279,22 @@ BENCHMARK(BM_BulletStep)->DenseRange(0, 1)->Unit(benchmark::kMicrosecond);
 
 template <typename S>
 void BM_NetworkStep(benchmark::State& state) {
+  OnPath path(state, state.range(0));
+  if (!path.ok()) return;
   Developed<S> d(BenchGenome());
   GrnBatchT<S>& grn = d.development.grn();
   for (auto _ : state) grn.Step();
   state.counters["nodes"] = d.network.node_count();
   state.counters["weights"] = d.network.weight_value().size();
 }
-BENCHMARK_TEMPLATE(BM_NetworkStep, double)->Unit(benchmark::kMicrosecond);
-BENCHMARK_TEMPLATE(BM_NetworkStep, float)->Unit(benchmark::kMicrosecond);
+BENCHMARK_TEMPLATE(BM_NetworkStep, double)
+    ->ArgName("isa")
+    ->DenseRange(0, 2)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_TEMPLATE(BM_NetworkStep, float)
+    ->ArgName("isa")
+    ->DenseRange(0, 2)
+    ->Unit(benchmark::kMicrosecond);
 
 template <typename S>
 void BM_SignalStep(benchmark::State& state) {

@@ -19,11 +19,11 @@
 #include "common/evaluation/trace_recorder.h"
 #include "common/genome/genome_proto.h"
 #include "common/io/proto_file.h"
+#include "common/svg/svg.h"
 #include "figures/analysis_plots.h"
 #include "figures/contact_sheet.h"
 #include "figures/line_plot.h"
 #include "figures/snapshot_strip.h"
-#include "figures/svg.h"
 #include "master/lineage/queries.h"
 #include "master/lineage/store.h"
 
@@ -195,7 +195,7 @@ figures::SheetEntry Picture(const v1::Genome& message,
 }
 
 std::string FitnessText(const std::optional<double>& fitness) {
-  return fitness ? figures::Number(*fitness, 4) : "no fitness";
+  return fitness ? svg::Number(*fitness, 4) : "no fitness";
 }
 
 int ContactSheet(const Options& o) {

@@ -6,7 +6,7 @@
 #include <numeric>
 #include <string>
 
-#include "figures/svg.h"
+#include "common/svg/svg.h"
 
 namespace animat::figures {
 namespace {
@@ -34,7 +34,7 @@ std::string Title(const analysis::Analysis& analysis, StepRange range) {
   std::string title = "motion steps " + std::to_string(range.from) + " to " +
                       std::to_string(range.to);
   if (analysis.period_steps) {
-    title += " (period " + Number(*analysis.period_steps, 1) + " steps)";
+    title += " (period " + svg::Number(*analysis.period_steps, 1) + " steps)";
   }
   return title;
 }

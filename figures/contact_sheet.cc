@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "figures/svg.h"
+#include "common/svg/svg.h"
 
 namespace animat::figures {
 namespace {
@@ -82,19 +82,19 @@ std::string ContactSheetSvg(const std::string& title,
   // picture's heading and caption to the picture.
   const double width = shown_columns * kPicture;
   const std::vector<std::string> title_lines =
-      WrapText(title, width - 2 * kMargin, kTitleSize);
+      svg::WrapText(title, width - 2 * kMargin, kTitleSize);
   const std::string note =
       "Bodies at the start of motion, all at one scale (" +
-      Number(2 * reach, 1) +
+      svg::Number(2 * reach, 1) +
       " radii across); red: the path of the centre of mass, turned to run "
       "right, up to the frame.";
   const std::vector<std::string> note_lines =
-      WrapText(note, width - 2 * kMargin, kNoteSize);
+      svg::WrapText(note, width - 2 * kMargin, kNoteSize);
   std::vector<std::vector<std::string>> headings, captions;
   size_t heading_lines = 1, caption_lines = 1;
   for (const SheetEntry& e : entries) {
-    headings.push_back(WrapText(e.heading, kPicture - 8, kHeadingSize));
-    captions.push_back(WrapText(e.caption, kPicture - 8, kCaptionSize));
+    headings.push_back(svg::WrapText(e.heading, kPicture - 8, kHeadingSize));
+    captions.push_back(svg::WrapText(e.caption, kPicture - 8, kCaptionSize));
     heading_lines = std::max(heading_lines, headings.back().size());
     caption_lines = std::max(caption_lines, captions.back().size());
   }
@@ -102,8 +102,8 @@ std::string ContactSheetSvg(const std::string& title,
   const double below = 4 + heading_lines * kLeading * kHeadingSize +
                        caption_lines * kLeading * kCaptionSize;
   const double notes_top = top + rows * (kPicture + below);
-  SvgWriter svg(width,
-                notes_top + note_lines.size() * kLeading * kNoteSize + 8);
+  svg::SvgWriter svg(width,
+                     notes_top + note_lines.size() * kLeading * kNoteSize + 8);
   svg.Title(title);
   for (size_t l = 0; l < title_lines.size(); ++l) {
     svg.Text({kMargin, 4 + (l + 1) * kLeading * kTitleSize}, title_lines[l],

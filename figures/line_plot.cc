@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "figures/svg.h"
+#include "common/svg/svg.h"
 
 namespace animat::figures {
 namespace {
@@ -81,7 +81,7 @@ std::string LinePlotSvg(const LinePlot& plot) {
   const double height = kTop + panels * plot.panel_height +
                         (panels > 0 ? panels - 1 : 0) * kGap + kBottom;
   const double plot_width = plot.width - kLeft - kRight;
-  SvgWriter svg(plot.width, height);
+  svg::SvgWriter svg(plot.width, height);
   svg.Title(plot.title);
   svg.Text({plot.width / 2, 20}, plot.title, 14, "middle");
 
@@ -137,12 +137,13 @@ std::string LinePlotSvg(const LinePlot& plot) {
         y_ticks.size() > 1 ? Decimals(y_ticks[1] - y_ticks[0]) : 2;
     for (double t : y_ticks) {
       svg.Line({kLeft, py(t)}, {kLeft + plot_width, py(t)}, "#e6e6e6", 1);
-      svg.Text({kLeft - 6, py(t) + 4}, Number(t, y_decimals), 11, "end");
+      svg.Text({kLeft - 6, py(t) + 4}, svg::Number(t, y_decimals), 11, "end");
     }
     for (double t : x_ticks) {
       svg.Line({px(t), bottom}, {px(t), bottom + 4}, "black", 1);
       if (p == panels - 1) {
-        svg.Text({px(t), bottom + 17}, Number(t, x_decimals), 11, "middle");
+        svg.Text({px(t), bottom + 17}, svg::Number(t, x_decimals), 11,
+                 "middle");
       }
     }
     svg.Line({kLeft, bottom}, {kLeft + plot_width, bottom}, "black", 1);

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "figures/svg.h"
+#include "common/svg/svg.h"
 
 namespace animat::figures {
 namespace {
@@ -44,7 +44,7 @@ Result<std::vector<int>> CycleFrames(const Recording& recording,
   const int last = first + static_cast<int>(std::lround(period_frames));
   if (last >= recording.frames() || start < recording.steps.front()) {
     return Status::InvalidArgument(
-        "a cycle of " + Number(*analysis.period_steps, 1) +
+        "a cycle of " + svg::Number(*analysis.period_steps, 1) +
         " steps from step " + std::to_string(start) +
         " does not fit in the motion recorded (steps " +
         std::to_string(recording.steps.front()) + " to " +
@@ -107,11 +107,11 @@ Result<std::string> SnapshotStripSvg(const Recording& recording,
 
   const int snapshots = options.snapshots;
   const double width = snapshots * kPanel;
-  SvgWriter svg(width, kTop + kPanel + kBottom);
+  svg::SvgWriter svg(width, kTop + kPanel + kBottom);
   const double cycle_steps = recording.steps[last] - recording.steps[first];
-  svg.Title("One motion cycle (" + Number(cycle_steps, 0) + " steps)");
+  svg.Title("One motion cycle (" + svg::Number(cycle_steps, 0) + " steps)");
   svg.Text({8, 18},
-           "One cycle of " + Number(cycle_steps, 0) +
+           "One cycle of " + svg::Number(cycle_steps, 0) +
                " steps from motion step " +
                std::to_string(recording.steps[first]) +
                "; red: expanding, blue: contracting, green: neutral",
@@ -157,9 +157,10 @@ Result<std::string> SnapshotStripSvg(const Recording& recording,
   const double moved =
       Length(recording.CentreOfMass(last) - recording.CentreOfMass(first));
   svg.Text({8, kTop + kPanel + 24},
-           "Arrow (last panel): the centre of mass moves " + Number(moved, 4) +
+           "Arrow (last panel): the centre of mass moves " +
+               svg::Number(moved, 4) +
                " radii in the cycle (cross: where it started). Panels " +
-               Number(extent, 1) + " radii wide; front to the right.",
+               svg::Number(extent, 1) + " radii wide; front to the right.",
            12);
   return svg.Finish();
 }

@@ -16,6 +16,7 @@
 #include <google/protobuf/stubs/logging.h>
 #include <CLI/CLI.hpp>
 
+#include "common/protocol/endpoint.h"
 #include "master/progress.h"
 #include "master/run/session.h"
 
@@ -26,8 +27,14 @@ void AddOptions(CLI::App& app, animat::SessionOptions& o, bool& resume) {
   app.add_option("--config", o.config_path,
                  "Run configuration (animat.v1.RunConfig, .json or .txtpb)");
   app.add_option("--db", o.db_path, "The lineage store (SQLite)")->required();
-  app.add_option("--bind", o.bind, "Where workers connect")
-      ->capture_default_str();
+  app.add_option("--bind", o.bind,
+                 "Where workers connect: tcp://HOST:PORT or ipc://PATH")
+      ->capture_default_str()
+      ->check([](const std::string& endpoint) {
+        return animat::protocol::CheckEndpoint(
+                   endpoint, animat::protocol::EndpointUse::kBind)
+            .message();
+      });
   app.add_flag("--resume", resume, "Continue the run in --db");
   app.add_flag("--force", o.force,
                "Resume even with another configuration or build");

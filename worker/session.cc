@@ -179,6 +179,8 @@ std::optional<Worker::SessionEnd> Worker::Session::Handle(
         worker_.unacknowledged_.erase(id);
       }
       break;
+    case v1::Envelope::kGoodbye:
+      return RunOver(envelope.goodbye());
     default:
       options_.log(std::string("ignored an unexpected ") +
                    protocol::BodyName(envelope) + " from the master");
@@ -355,6 +357,17 @@ void Worker::Session::SendCredit(int credit) {
   v1::Envelope envelope;
   envelope.mutable_credit()->set_credit(credit);
   Send(envelope);
+}
+
+Worker::SessionEnd Worker::Session::RunOver(const v1::Goodbye& goodbye) {
+  // Nothing it holds is of use any more: the work not started, the
+  // results not sent or not acknowledged.
+  options_.log("the master's run is over (" +
+               ForeignText(goodbye.reason(), protocol::kMaxReasonBytes) + ")");
+  if (pool()) pool()->Abandon();
+  worker_.unsent_.clear();
+  worker_.unacknowledged_.clear();
+  return SessionEnd::kRunOver;
 }
 
 Worker::SessionEnd Worker::Session::Lost() {

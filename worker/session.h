@@ -1,8 +1,9 @@
 // One session of a Worker with a master, from its hello to its end: the
 // state machine of docs/protocol.md. Connecting (hello sent), serving once
 // welcomed, stopping on Worker::Stop(), and lost when the master falls
-// silent. What outlives a session (the pool, results not yet sent or not
-// yet acknowledged) is the Worker's, which the session borrows.
+// silent, or told by the master that its run is over. What outlives a session
+// (the pool, results not yet sent or not yet acknowledged) is the Worker's,
+// which the session borrows.
 //
 // Private to worker/. A Session and its Worker belong to the thread that
 // runs Worker::Run(); only Worker::Stop() may come from elsewhere.
@@ -67,6 +68,8 @@ class Worker::Session {
   void ReadHandshakes();
   std::string HandshakeProblem(const protocol::HandshakeEvent& event) const;
   void SendCredit(int credit);
+  // The master's goodbye: its run is over.
+  SessionEnd RunOver(const v1::Goodbye& goodbye);
   SessionEnd Lost();
 
   // The worker's: it outlives the session.

@@ -26,24 +26,64 @@ Worker::~Worker() = default;
 
 int Worker::Run() {
   zmq::context_t context(1);
+  using Steady = std::chrono::steady_clock;
+  Steady::time_point idle_since = Steady::now();
   int backoff = options_.reconnect_min_ms;
   while (!stop_.load(std::memory_order_relaxed)) {
-    const SessionEnd end = Session(*this, context).Run();
-    if (end == SessionEnd::kRefused) return kExitRefused;
-    if (end == SessionEnd::kStopped) break;
-    if (end == SessionEnd::kLostAfterWelcome) {
+    if (IdleTooLong(idle_since)) {
+      options_.log("no master for " + std::to_string(options_.idle_timeout_s) +
+                   " s; exiting (--idle-timeout)");
+      pool_.reset();
+      return kExitDone;
+    }
+    const std::optional<SessionEnd> end = RunSession(context);
+    if (!end) return kExitBadEndpoint;
+    if (*end == SessionEnd::kRefused) return kExitRefused;
+    if (*end == SessionEnd::kStopped) break;
+    if (*end == SessionEnd::kRunOver && options_.exit_when_done) {
+      options_.log("the master's run is over; exiting (--exit-when-done)");
+      pool_.reset();
+      return kExitDone;
+    }
+    if (*end == SessionEnd::kLostAfterWelcome || *end == SessionEnd::kRunOver) {
       backoff = options_.reconnect_min_ms;
+      idle_since = Steady::now();
     }
-    options_.log("master silent; reconnecting in " + std::to_string(backoff) +
-                 " ms");
-    for (int waited = 0; waited < backoff && !stop_.load(); waited += 20) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
+    options_.log(std::string(*end == SessionEnd::kRunOver
+                                 ? "the master's run is over; waiting for a "
+                                   "next master"
+                                 : "master silent") +
+                 "; reconnecting in " + std::to_string(backoff) + " ms");
+    Backoff(backoff, idle_since);
     backoff = std::min(2 * backoff, options_.reconnect_max_ms);
   }
   pool_.reset();
   options_.log("stopped");
   return kExitStopped;
+}
+
+std::optional<Worker::SessionEnd> Worker::RunSession(zmq::context_t& context) {
+  try {
+    return Session(*this, context).Run();
+  } catch (const zmq::error_t& e) {
+    // The endpoint was checked (protocol::CheckEndpoint); ZeroMQ may still
+    // refuse it.
+    options_.log("cannot connect to " + options_.endpoint + ": " + e.what());
+    return std::nullopt;
+  }
+}
+
+bool Worker::IdleTooLong(std::chrono::steady_clock::time_point since) const {
+  return options_.idle_timeout_s > 0 &&
+         std::chrono::steady_clock::now() - since >=
+             std::chrono::seconds(options_.idle_timeout_s);
+}
+
+void Worker::Backoff(int ms, std::chrono::steady_clock::time_point since) {
+  for (int waited = 0; waited < ms && !stop_.load() && !IdleTooLong(since);
+       waited += 20) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
 }
 
 }  // namespace animat

@@ -9,8 +9,10 @@
 #define ANIMAT_WORKER_WORKER_H_
 
 #include <atomic>
+#include <chrono>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -45,6 +47,12 @@ struct WorkerOptions {
   std::string curve_server_key;
   std::string curve_public_key;
   std::string curve_secret_key;
+  // When the master says its run is over (docs/protocol.md): exit (Run
+  // returns kExitDone) instead of waiting for a next master.
+  bool exit_when_done = false;
+  // Exit (kExitDone) once no master has welcomed this worker for this many
+  // seconds (checked between connection attempts); 0: never.
+  int idle_timeout_s = 0;
   LogSink log = Prefixed("worker", StderrSink);
 };
 
@@ -52,12 +60,15 @@ class Worker {
  public:
   // Exit codes of Run().
   static constexpr int kExitStopped = 0;  // Stop() was called.
-  static constexpr int kExitRefused = 3;  // The master refused us.
+  static constexpr int kExitDone = 0;     // The run is over, or no master came.
+  static constexpr int kExitBadEndpoint = 2;  // ZeroMQ refused the endpoint.
+  static constexpr int kExitRefused = 3;      // The master refused us.
 
   explicit Worker(WorkerOptions options);
   ~Worker();
 
-  // Serves masters until Stop() or a refusal.
+  // Serves masters until Stop(), a refusal, or (as the options say) the end
+  // of the run or a long time without a master.
   int Run();
 
   // Asks Run() to hand back the work it has not started, finish the
@@ -67,8 +78,22 @@ class Worker {
 
  private:
   // kLost: the master fell silent (kLostAfterWelcome: after welcoming us,
-  // so the backoff starts again from its minimum).
-  enum class SessionEnd { kStopped, kRefused, kLost, kLostAfterWelcome };
+  // so the backoff starts again from its minimum); kRunOver: the master
+  // said its run is over.
+  enum class SessionEnd {
+    kStopped,
+    kRefused,
+    kLost,
+    kLostAfterWelcome,
+    kRunOver
+  };
+  // The next session's end; kExitBadEndpoint when ZeroMQ refuses the
+  // endpoint.
+  std::optional<SessionEnd> RunSession(zmq::context_t& context);
+  // Waits `ms` before the next connection, or less when Stop() is called
+  // or the idle timeout comes first.
+  void Backoff(int ms, std::chrono::steady_clock::time_point idle_since);
+  bool IdleTooLong(std::chrono::steady_clock::time_point idle_since) const;
   // One connection to a master, from its hello to its end (session.h).
   class Session;
 

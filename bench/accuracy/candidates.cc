@@ -29,6 +29,10 @@ std::string Candidate::Label() const {
     letter = 'V';
   } else if (integrator == "RK4") {
     letter = 'R';
+  } else if (integrator == "SSPRK3") {
+    letter = 'S';
+  } else if (integrator == "RALSTON3") {
+    letter = 'L';
   }
   std::string label(1, letter);
   label += std::to_string(substeps);
@@ -43,6 +47,10 @@ std::string Candidate::Name() const {
     name += "verlet";
   } else if (integrator == "RK4") {
     name += "rk4";
+  } else if (integrator == "SSPRK3") {
+    name += "ssprk3";
+  } else if (integrator == "RALSTON3") {
+    name += "ralston3";
   } else {
     name += "euler";
   }
@@ -56,6 +64,9 @@ std::string Candidate::Group() const {
   if (backend == "BULLET") return "Bullet";
   if (integrator == "VELOCITY_VERLET") return "velocity Verlet";
   if (integrator == "RK4") return "RK4";
+  if (integrator == "SSPRK3" || integrator == "RALSTON3") {
+    return "third-order Runge-Kutta";
+  }
   return "semi-implicit Euler";
 }
 
@@ -74,7 +85,7 @@ Candidate ReferenceCandidate() {
 }
 
 Candidate DefaultCandidate() {
-  return Make("RK4", 1, "EXPLICIT", "FLOAT", "NATIVE");
+  return Make("RALSTON3", 1, "EXPLICIT", "FLOAT", "NATIVE");
 }
 
 std::vector<Candidate> CandidateSet() {
@@ -89,6 +100,16 @@ std::vector<Candidate> CandidateSet() {
       }
     }
   }
+  // The third-order schemes with explicit drag only: the stable drag
+  // update's splitting is at most second order (docs/accuracy.md).
+  for (const char* integrator : {"SSPRK3", "RALSTON3"}) {
+    for (int substeps : {1, 2}) {
+      for (const char* precision : {"DOUBLE", "FLOAT"}) {
+        set.push_back(
+            Make(integrator, substeps, "EXPLICIT", precision, "NATIVE"));
+      }
+    }
+  }
   for (int substeps : {1, 2}) {
     for (const char* precision : {"DOUBLE", "FLOAT"}) {
       set.push_back(Make("SEMI_IMPLICIT_EULER", substeps, "EXPLICIT", precision,
@@ -96,6 +117,30 @@ std::vector<Candidate> CandidateSet() {
     }
   }
   return set;
+}
+
+Result<std::vector<Candidate>> SelectCandidates(
+    const std::vector<std::string>& labels) {
+  const std::vector<Candidate> set = CandidateSet();
+  if (labels.empty()) return set;
+  for (const std::string& label : labels) {
+    bool known = false;
+    for (const Candidate& c : set) known = known || c.Label() == label;
+    if (!known) {
+      return Status::InvalidArgument("no candidate labelled \"" + label +
+                                     "\" (labels: E1, V2f, R1f, S1f, ...)");
+    }
+  }
+  std::vector<Candidate> selected;
+  for (const Candidate& c : set) {
+    for (const std::string& label : labels) {
+      if (c.Label() == label) {
+        selected.push_back(c);
+        break;
+      }
+    }
+  }
+  return selected;
 }
 
 Result<ModelConfig> CandidateConfig(const Candidate& candidate) {

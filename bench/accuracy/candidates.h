@@ -18,20 +18,22 @@ namespace animat::accuracy {
 
 struct Candidate {
   // Proto enum value names (animat.v1.PhysicsConfig, GrnConfig).
-  std::string integrator;  // "SEMI_IMPLICIT_EULER", "VELOCITY_VERLET", "RK4".
+  // "SEMI_IMPLICIT_EULER", "VELOCITY_VERLET", "RK4", "SSPRK3", "RALSTON3".
+  std::string integrator;
   int substeps = 1;
   std::string drag_update;  // "EXPLICIT", "STABLE".
   std::string precision;    // "DOUBLE", "FLOAT".
   std::string backend;      // "NATIVE", "BULLET".
 
   // Compact label for plots: integrator letter (E semi-implicit Euler,
-  // V velocity Verlet, R RK4, B Bullet), sub-steps, "s" for the stable drag
+  // V velocity Verlet, R RK4, S SSPRK3, L Ralston's third order, B Bullet),
+  // sub-steps, "s" for the stable drag
   // update, "f" for float network arithmetic: "E1", "R4s", "B2f".
   std::string Label() const;
   // Readable name: "euler ×1, explicit, double" ("bullet euler ×2, ...").
   std::string Name() const;
   // The group a plot colours it by: "semi-implicit Euler", "velocity
-  // Verlet", "RK4", "Bullet".
+  // Verlet", "RK4", "third-order Runge-Kutta", "Bullet".
   std::string Group() const;
   // The fields it sets over the defaults, as proto text of animat.v1.Config.
   // Every field the candidate names is written, precision included, so a
@@ -41,14 +43,22 @@ struct Candidate {
 
 // RK4, 16 sub-steps, explicit drag, double, native.
 Candidate ReferenceCandidate();
-// The default configuration: RK4, 1 sub-step, explicit drag, float network
-// arithmetic, native ("R1f").
+// The default configuration: Ralston's third order, 1 sub-step, explicit
+// drag, float network arithmetic, native ("L1f").
 Candidate DefaultCandidate();
 
 // Every native integrator x sub-steps {1, 2, 4} x drag update {explicit,
-// stable} x precision {double, float}, then the Bullet backend
-// (semi-implicit Euler, 1 and 2 sub-steps, explicit drag, both precisions).
+// stable} x precision {double, float} for Euler, Verlet and RK4; the two
+// third-order schemes with sub-steps {1, 2}, explicit drag, both
+// precisions; then the Bullet backend (semi-implicit Euler, 1 and 2
+// sub-steps, explicit drag, both precisions).
 std::vector<Candidate> CandidateSet();
+
+// The candidates of CandidateSet() with these labels, in the set's order;
+// all of them when `labels` is empty. Fails naming a label that is not in
+// the set.
+Result<std::vector<Candidate>> SelectCandidates(
+    const std::vector<std::string>& labels);
 
 // The configuration of `candidate`: the defaults with ConfigText() read by
 // ConfigFromProto. Fails with the reader's message if it rejects the text,

@@ -137,11 +137,18 @@ Result<std::vector<ModelConfig>> PerAnimat(const ModelConfig& config,
 }  // namespace
 
 std::string RuleChoice(const std::vector<CandidateResult>& candidates) {
-  std::string choice;
   double cheapest = kInfinity;
   for (const CandidateResult& c : candidates) {
-    if (c.MeetsRule() && c.ms_median < cheapest) {
-      cheapest = c.ms_median;
+    if (c.MeetsRule() && c.ms_median < cheapest) cheapest = c.ms_median;
+  }
+  // Among the equally cheap, the smallest 90th-percentile error; the first
+  // of equals.
+  std::string choice;
+  double best_p90 = kInfinity;
+  for (const CandidateResult& c : candidates) {
+    if (c.MeetsRule() && c.ms_median <= cheapest * (1.0 + kRuleTimeTie) &&
+        c.fitness_error_p90 < best_p90) {
+      best_p90 = c.fitness_error_p90;
       choice = c.candidate.Label();
     }
   }
@@ -159,6 +166,9 @@ Result<Report> RunExperiment(const ExperimentOptions& options) {
     if (options.progress) *options.progress << line << std::endl;
   };
 
+  Result<std::vector<Candidate>> candidates =
+      SelectCandidates(options.candidates);
+  if (!candidates.ok()) return candidates.status();
   Result<std::vector<Animat>> loaded = LoadAnimatSet(options.data_dir);
   if (!loaded.ok()) return loaded.status();
   std::vector<Animat> animats = *loaded;
@@ -269,7 +279,7 @@ Result<Report> RunExperiment(const ExperimentOptions& options) {
   std::vector<CandidateResult> results;
   std::vector<std::vector<ModelConfig>> configs;  // [candidate][animat]
   std::vector<int> loaded_index;                  // Into results.
-  for (const Candidate& candidate : CandidateSet()) {
+  for (const Candidate& candidate : *candidates) {
     CandidateResult result;
     result.candidate = candidate;
     Result<ModelConfig> config = CandidateConfig(candidate);

@@ -30,15 +30,19 @@ struct ExperimentOptions {
   // (kQuickRandom random and kQuickEvolved evolved animats).
   bool quick = false;
   std::ostream* progress = nullptr;  // Progress lines, or null.
+  // Only the candidates with these labels (Candidate::Label, e.g. "R1f");
+  // empty for the whole CandidateSet(). An unknown label is an error.
+  std::vector<std::string> candidates;
 };
 
 // The chaos measurement's motion steps.
 inline constexpr int kChaosSteps[] = {500, 1000, 2000, 4000, 6000};
 
 // docs/model.md §7.6: the label of the cheapest candidate (median ms per
-// evaluation; the first of equals) that meets the rule
-// (CandidateResult::MeetsRule), or
-// "" when none does.
+// evaluation) that meets the rule (CandidateResult::MeetsRule), or "" when
+// none does. Candidates within kRuleTimeTie of the cheapest count as equally
+// cheap, and the one with the smallest 90th-percentile fitness error among
+// them is chosen (the first of equals).
 std::string RuleChoice(const std::vector<CandidateResult>& candidates);
 
 // Runs everything single-threaded (so that timings are not disturbed by a

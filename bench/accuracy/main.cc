@@ -1,7 +1,7 @@
 // animat-accuracy: the speed-against-error report (docs/accuracy.md).
 //
 //   build/bin/animat-accuracy [--out docs/accuracy] [--quick]
-//       [--repeats 3] [--animats N] [--data DIR]
+//       [--repeats 3] [--animats N] [--data DIR] [--candidates R1f,S1f]
 //
 // Evaluates a fixed set of animats (bench/data/accuracy/) under a reference
 // configuration (RK4, 16 sub-steps, double) and under every candidate
@@ -13,6 +13,7 @@
 #include <iostream>
 #include <string>
 #include <system_error>
+#include <vector>
 
 #include "bench/accuracy/experiment.h"
 #include "bench/accuracy/report.h"
@@ -26,6 +27,7 @@ struct Options {
   bool quick = false;
   int repeats = 3;
   int animats = 0;
+  std::vector<std::string> candidates;
 };
 
 int Run(const Options& o) {
@@ -35,6 +37,7 @@ int Run(const Options& o) {
   options.repeats = o.quick ? 1 : o.repeats;
   options.max_animats = o.animats;  // 0: all, or --quick's subset.
   options.progress = &std::cerr;
+  options.candidates = o.candidates;
   animat::Result<animat::accuracy::Report> report =
       animat::accuracy::RunExperiment(options);
   if (!report.ok()) {
@@ -88,6 +91,10 @@ int main(int argc, char** argv) {
                  "Use only the first N animats by name (0: all, or "
                  "--quick's 4 random and 1 evolved)")
       ->check(CLI::Range(0, 100000));
+  app.add_option("--candidates", o.candidates,
+                 "Only these candidates, by label (e.g. R1f,S1f; default: "
+                 "all)")
+      ->delimiter(',');
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -257,7 +257,11 @@ std::string SummaryMarkdown(const Report& report) {
       "most " +
       Format("%g", kRuleP90) +
       " at the 90th percentile and no pair swapped; the cheapest (median "
-      "ms per evaluation) that meets it is chosen as the default.\n";
+      "ms per evaluation) that meets it is chosen as the default, times "
+      "within " +
+      Format("%g", kRuleTimeTie * 100) +
+      "% of the cheapest counting as equal, the smallest 90th-percentile "
+      "error deciding among them.\n";
   md += "\n" + RuleSummary(report);
   if (!notes.empty()) {
     md += "\n";
@@ -373,7 +377,9 @@ std::string ReportSvg(const Report& report) {
                  ".";
   options.legend_notes = {"Labels: integrator E = semi-implicit",
                           "Euler, V = velocity Verlet, R = RK4,",
-                          "B = Bullet (semi-implicit Euler);",
+                          "S = SSPRK3, L = Ralston's third",
+                          "order, B = Bullet (semi-implicit",
+                          "Euler);",
                           "number = sub-steps per step;",
                           "s = stable drag update;",
                           "f = float network arithmetic.",

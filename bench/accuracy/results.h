@@ -71,6 +71,10 @@ struct CandidateResult {
 
 // The 90th-percentile fitness error the rule allows the default.
 inline constexpr double kRuleP90 = 0.01;
+// Median times within this fraction of the cheapest candidate that meets
+// the rule count as equally cheap (the report's timing repeats to about
+// this); among those the rule takes the most accurate.
+inline constexpr double kRuleTimeTie = 0.05;
 
 inline bool CandidateResult::MeetsRule() const {
   return Eligible() && fitness_error_p90 <= kRuleP90 && order_swaps == 0;

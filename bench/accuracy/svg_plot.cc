@@ -5,13 +5,15 @@
 #include <cstdio>
 #include <vector>
 
+#include "common/svg/svg.h"
+
 namespace animat::accuracy {
 namespace {
 
 // Canvas and plot area, in SVG user units.
 constexpr double kWidth = 920, kHeight = 620;
 constexpr double kLeft = 80, kTop = 50, kRight = 680, kBottom = 530;
-constexpr double kFontSize = 10, kCharWidth = 6.0;
+constexpr double kFontSize = 10;
 constexpr const char* kPalette[] = {"#1f77b4", "#2ca02c", "#ff7f0e", "#9467bd",
                                     "#8c564b", "#e377c2", "#7f7f7f", "#17becf"};
 
@@ -98,34 +100,11 @@ struct Box {
 std::string Text(double x, double y, const std::string& text,
                  const std::string& extra = "") {
   return "<text x=\"" + Num(x) + "\" y=\"" + Num(y) + "\"" +
-         (extra.empty() ? "" : " " + extra) + ">" + XmlEscape(text) +
+         (extra.empty() ? "" : " " + extra) + ">" + svg::Escape(text) +
          "</text>\n";
 }
 
 }  // namespace
-
-std::string XmlEscape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
 std::string PlotSvg(std::span<const PlotPoint> all,
                     const PlotOptions& options) {
@@ -252,7 +231,7 @@ std::string PlotSvg(std::span<const PlotPoint> all,
   }
   for (const PlotPoint& p : points) {
     const double x = px(p.x), y = py(p.y);
-    const double w = kCharWidth * static_cast<double>(p.label.size());
+    const double w = svg::TextWidth(p.label, kFontSize);
     const double h = kFontSize;
     // Baseline-left corners to try, in order of preference.
     const double tries[][2] = {

@@ -1,5 +1,6 @@
-// A hand-written SVG scatter plot of cost against error on log-log axes,
-// with the Pareto front drawn as a line through its points.
+// An SVG scatter plot of cost against error on log-log axes, with the
+// Pareto front drawn as a line through its points. Text is escaped and
+// measured as figures/ does (common/svg); the layout is the plot's own.
 #ifndef ANIMAT_BENCH_ACCURACY_SVG_PLOT_H_
 #define ANIMAT_BENCH_ACCURACY_SVG_PLOT_H_
 
@@ -33,9 +34,6 @@ struct PlotOptions {
 // left out. Legend markers are <circle class="legend"> elements.
 std::string PlotSvg(std::span<const PlotPoint> points,
                     const PlotOptions& options);
-
-// Text with &, <, >, " escaped for XML.
-std::string XmlEscape(const std::string& text);
 
 }  // namespace animat::accuracy
 

@@ -22,7 +22,16 @@
 #include <cstdint>
 #include <limits>
 
+// Each build of the vector kernels (common/kernels) compiles these inline
+// functions for its own instruction set. The inline namespace gives each
+// build its own symbols, so the linker never merges, say, an AVX-512 copy
+// into code that runs on every machine. Only those builds define it.
+#ifndef ANIMAT_ISA_NAMESPACE
+#define ANIMAT_ISA_NAMESPACE isa_baseline
+#endif
+
 namespace animat {
+inline namespace ANIMAT_ISA_NAMESPACE {
 namespace fast_math_internal {
 
 constexpr double kLog2e = 1.44269504088896338700e+00;
@@ -207,6 +216,8 @@ inline void SinCos(double x, double* sin_out, double* cos_out) {
       break;
   }
 }
+
+}  // namespace ANIMAT_ISA_NAMESPACE
 
 // In-place array forms (the loop vectorises; results equal the scalar
 // forms bit for bit).

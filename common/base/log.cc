@@ -1,27 +1,17 @@
 #include "common/base/log.h"
 
-#include <chrono>
 #include <cstdio>
-#include <ctime>
 #include <mutex>
+
+#include "common/base/utc_time.h"
 
 namespace animat {
 
 void StderrSink(std::string_view line) {
-  const auto now = std::chrono::system_clock::now();
-  const std::time_t seconds = std::chrono::system_clock::to_time_t(now);
-  const int millis =
-      static_cast<int>(std::chrono::duration_cast<std::chrono::milliseconds>(
-                           now.time_since_epoch())
-                           .count() %
-                       1000);
-  std::tm utc;
-  gmtime_r(&seconds, &utc);
-  char stamp[32];
-  std::strftime(stamp, sizeof(stamp), "%Y-%m-%dT%H:%M:%S", &utc);
+  const std::string stamp = UtcNow();
   static std::mutex mutex;
   std::lock_guard<std::mutex> lock(mutex);
-  std::fprintf(stderr, "%s.%03dZ %.*s\n", stamp, millis,
+  std::fprintf(stderr, "%s %.*s\n", stamp.c_str(),
                static_cast<int>(line.size()), line.data());
   std::fflush(stderr);
 }

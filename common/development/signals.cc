@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "common/base/fast_math.h"
+#include "common/kernels/kernels.h"
 
 namespace animat {
 
@@ -97,15 +98,15 @@ void MorphogenFieldT<S>::SetGeometry(std::span<const Vec2> positions) {
   const size_t pairs = pair_distance_.size();
   pair_kernel_.resize(pairs);
   pair_delay_.resize(pairs);
-  const double kernel_length = params_.kernel_length;
-  const double delay_length = params_.delay_length;
-  const double max_delay = params_.max_delay;
-  for (size_t p = 0; p < pairs; ++p) {
-    const double d = pair_distance_[p];
-    pair_kernel_[p] = Exp(-d / kernel_length);
-    const double steps = std::floor(d / delay_length + 0.5);
-    pair_delay_[p] = steps < max_delay ? steps : max_delay;
-  }
+  kernels::PairKernelArgs args;
+  args.pairs = pairs;
+  args.distance = pair_distance_.data();
+  args.kernel_length = params_.kernel_length;
+  args.delay_length = params_.delay_length;
+  args.max_delay = params_.max_delay;
+  args.kernel = pair_kernel_.data();
+  args.delay = pair_delay_.data();
+  kernels::PairKernels(args);
   size_t p = 0;
   for (int i = 0; i < n; ++i) {
     kernel_[i * capacity_ + i] = S{1};

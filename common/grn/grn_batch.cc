@@ -4,16 +4,9 @@
 #include <cassert>
 #include <cmath>
 
-#include "common/base/fast_math.h"
+#include "common/kernels/kernels.h"
 
 namespace animat {
-namespace {
-
-inline double TanhOf(double x) { return Tanh(x); }
-inline float TanhOf(float x) { return TanhF(x); }
-
-}  // namespace
-
 template <typename S>
 GrnBatchT<S>::GrnBatchT(const Network& network, const GrnParams& params,
                         int capacity)
@@ -116,22 +109,24 @@ void GrnBatchT<S>::SetOwnSignals() {
 }
 
 template <typename S>
+const S* GrnBatchT<S>::SourceRow(int active) const {
+  const Network& net = *network_;
+  const Source& source = net.sources()[active_sources_[active]];
+  return source.kind == SourceKind::kMorphogen
+             ? &signals_[static_cast<size_t>(
+                             net.nodes()[source.node].morphogen) *
+                         capacity_]
+             : &levels_[static_cast<size_t>(source.node) * capacity_];
+}
+
+template <typename S>
 void GrnBatchT<S>::AccumulateSources(int first, int last) {
   // `first` and `last` index active_sources_.
-  const Network& net = *network_;
-  const std::vector<Source>& sources = net.sources();
   const int* target = row_target_.data();
   const S* weight = row_weight_.data();
   const int n = cells_;
   for (int a = first; a < last; ++a) {
-    const int s = active_sources_[a];
-    const Source& source = sources[s];
-    const S* value =
-        source.kind == SourceKind::kMorphogen
-            ? &signals_[static_cast<size_t>(
-                            net.nodes()[source.node].morphogen) *
-                        capacity_]
-            : &levels_[static_cast<size_t>(source.node) * capacity_];
+    const S* value = SourceRow(a);
     for (int k = row_begin_[a]; k < row_begin_[a + 1]; ++k) {
       S* acc = &activation_[static_cast<size_t>(target[k]) * capacity_];
       const S w = weight[k];
@@ -152,27 +147,37 @@ template <typename S>
 void GrnBatchT<S>::Step() {
   const Network& net = *network_;
   const int sources = static_cast<int>(active_sources_.size());
+  int first = 0;
   if (frozen_) {
     std::copy(input_partial_.begin(), input_partial_.end(),
               activation_.begin());
-    AccumulateSources(active_input_sources_, sources);
+    first = active_input_sources_;
   } else {
     std::fill(activation_.begin(), activation_.end(), S{0});
-    AccumulateSources(0, sources);
   }
-  // All activations are computed before any level changes: synchronous.
-  const std::vector<int>& targets = net.targets();
-  const S dt = dt_;
-  const int n = cells_;
+  // The rows the kernel reads and writes; all activations are computed
+  // before any level changes: synchronous.
+  source_row_.clear();
+  for (int a = first; a < sources; ++a) source_row_.push_back(SourceRow(a));
+  target_level_.clear();
   for (int t : active_targets_) {
-    S* a = &activation_[static_cast<size_t>(t) * capacity_];
-    S* level = &levels_[static_cast<size_t>(targets[t]) * capacity_];
-    for (int c = 0; c < n; ++c) {
-      const S l = level[c];
-      const S x = l + (TanhOf(a[c] * S{0.5}) - l) * dt;
-      level[c] = x < S{0} ? S{0} : (x > S{1} ? S{1} : x);
-    }
+    target_level_.push_back(
+        &levels_[static_cast<size_t>(net.targets()[t]) * capacity_]);
   }
+  kernels::GrnStepArgs<S> args;
+  args.cells = cells_;
+  args.capacity = capacity_;
+  args.sources = sources - first;
+  args.source = source_row_.data();
+  args.row_begin = &row_begin_[first];
+  args.row_target = row_target_.data();
+  args.row_weight = row_weight_.data();
+  args.activation = activation_.data();
+  args.targets = static_cast<int>(active_targets_.size());
+  args.target_activation = active_targets_.data();
+  args.level = target_level_.data();
+  args.dt = dt_;
+  kernels::GrnStep(args);
 }
 
 template <typename S>

@@ -2,11 +2,12 @@
 // (docs/model.md §3).
 //
 // State is stored node-major with the cells of one node contiguous, so one
-// weight updates all cells in a vectorisable loop; results do not depend on
-// vectorisation. The scalar type S (double or float) is the arithmetic of
-// levels, weights, signals and tanh (GrnParams::precision); values cross
-// the interface as double. The batch keeps a reference to its Network,
-// which must outlive it. Not thread-safe; one batch per evaluation.
+// weight updates all cells in a vector loop (common/kernels, on the
+// instruction-set path in use); results do not depend on the path. The scalar
+// type S (double or float) is the arithmetic of levels, weights, signals and
+// tanh (GrnParams::precision); values cross the interface as double. The batch
+// keeps a reference to its Network, which must outlive it. Not thread-safe; one
+// batch per evaluation.
 #ifndef ANIMAT_COMMON_GRN_GRN_BATCH_H_
 #define ANIMAT_COMMON_GRN_GRN_BATCH_H_
 
@@ -82,7 +83,10 @@ class GrnBatchT {
   void ResetOutput(int cell, OutputChannel channel);
 
  private:
+  // activation += the weighted rows of active sources [first, last).
   void AccumulateSources(int first, int last);
+  // The values of active source `active` (a level or signal row).
+  const S* SourceRow(int active) const;
 
   const Network* network_;
   S dt_;
@@ -103,6 +107,9 @@ class GrnBatchT {
   std::vector<int> row_begin_;
   std::vector<int> row_target_;
   std::vector<S> row_weight_;
+  // Step()'s scratch: the rows its kernel reads and writes.
+  std::vector<const S*> source_row_;
+  std::vector<S*> target_level_;
 };
 
 using GrnBatch = GrnBatchT<double>;

@@ -26,6 +26,10 @@ const char* IntegratorName(Integrator integrator) {
       return "velocity_verlet";
     case Integrator::kRk4:
       return "rk4";
+    case Integrator::kSsprk3:
+      return "ssprk3";
+    case Integrator::kRalston3:
+      return "ralston3";
   }
   return "?";
 }
@@ -62,6 +66,12 @@ Status PhysicsParamsFromProto(const v1::PhysicsConfig& m,
         break;
       case v1::PhysicsConfig::RK4:
         p.integrator = Integrator::kRk4;
+        break;
+      case v1::PhysicsConfig::SSPRK3:
+        p.integrator = Integrator::kSsprk3;
+        break;
+      case v1::PhysicsConfig::RALSTON3:
+        p.integrator = Integrator::kRalston3;
         break;
       default:
         return Status::InvalidArgument("physics.integrator: unknown value " +
@@ -158,6 +168,12 @@ v1::PhysicsConfig PhysicsParamsToProto(const PhysicsParams& p) {
       break;
     case Integrator::kRk4:
       m.set_integrator(v1::PhysicsConfig::RK4);
+      break;
+    case Integrator::kSsprk3:
+      m.set_integrator(v1::PhysicsConfig::SSPRK3);
+      break;
+    case Integrator::kRalston3:
+      m.set_integrator(v1::PhysicsConfig::RALSTON3);
       break;
   }
   m.set_substeps(p.substeps);

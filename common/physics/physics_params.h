@@ -8,11 +8,18 @@
 
 namespace animat {
 
-enum class Integrator { kSemiImplicitEuler, kVelocityVerlet, kRk4 };
+enum class Integrator {
+  kSemiImplicitEuler,
+  kVelocityVerlet,
+  kRk4,
+  kSsprk3,
+  kRalston3
+};
 enum class DragUpdate { kExplicit, kStable };
 enum class PhysicsBackend { kNative, kBullet };
 
-// "semi_implicit_euler", "velocity_verlet", "rk4"; "explicit", "stable";
+// "semi_implicit_euler", "velocity_verlet", "rk4", "ssprk3", "ralston3";
+// "explicit", "stable";
 // "native", "bullet".
 const char* IntegratorName(Integrator integrator);
 const char* DragUpdateName(DragUpdate drag);
@@ -28,9 +35,9 @@ struct PhysicsParams {
   double dt = 0.05;                // Time per simulation step.
   double actuation_max = 0.2;      // A_max, in [0, 0.5).
   double min_rest_fraction = 0.1;  // Rest length never below this * L0.
-  // RK4 with one sub-step: the cheapest setting that meets model §7.6's
-  // accuracy rule (docs/accuracy.md, docs/model.md).
-  Integrator integrator = Integrator::kRk4;
+  // Ralston's third order with one sub-step: the cheapest setting that
+  // meets model §7.6's accuracy rule (docs/accuracy.md, docs/model.md).
+  Integrator integrator = Integrator::kRalston3;
   int substeps = 1;  // Physics sub-steps per simulation step.
   DragUpdate drag_update = DragUpdate::kExplicit;
   PhysicsBackend backend = PhysicsBackend::kNative;

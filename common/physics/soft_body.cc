@@ -8,6 +8,17 @@
 #include "common/geometry/polygon.h"
 
 namespace animat {
+namespace {
+
+// Shu and Osher's strong-stability-preserving scheme (c = 0, 1, 1/2).
+constexpr SoftBody::Rk3Tableau kSsprk3Tableau = {
+    1.0, 0.25, 0.25, 1.0 / 6.0, 1.0 / 6.0, 2.0 / 3.0};
+// Ralston's, with the smallest truncation error bound of the three-stage
+// third-order schemes (c = 0, 1/2, 3/4).
+constexpr SoftBody::Rk3Tableau kRalston3Tableau = {
+    0.5, 0.0, 0.75, 2.0 / 9.0, 1.0 / 3.0, 4.0 / 9.0};
+
+}  // namespace
 
 SoftBody::SoftBody(const Body& body, const PhysicsParams& params)
     : params_(params), nodes_(body.nodes()) {
@@ -81,8 +92,11 @@ void SoftBody::AddPressure(const Vec2* x, Vec2* force) const {
     // bit): the shoelace sum relative to the first vertex.
     const Vec2 origin = x[walk[begin]];
     double twice = 0.0;
+    Vec2 from = x[walk[begin + 1]] - origin;
     for (int k = begin + 1; k + 1 < end; ++k) {
-      twice += Cross(x[walk[k]] - origin, x[walk[k + 1]] - origin);
+      const Vec2 to = x[walk[k + 1]] - origin;
+      twice += Cross(from, to);
+      from = to;
     }
     const double area = 0.5 * twice;
     // c_p * l * (1 - S / S0) * n with n = (dy, -dx) / l, half to each end.
@@ -147,6 +161,12 @@ void SoftBody::Step(MotionState* state) {
       case Integrator::kRk4:
         Rk4Step(h, !stable, state);
         break;
+      case Integrator::kSsprk3:
+        Rk3Step(h, !stable, kSsprk3Tableau, state);
+        break;
+      case Integrator::kRalston3:
+        Rk3Step(h, !stable, kRalston3Tableau, state);
+        break;
     }
     if (stable) ApplyStableDrag(0.5 * h, state);
   }
@@ -154,18 +174,25 @@ void SoftBody::Step(MotionState* state) {
 
 void SoftBody::EulerStep(double h, bool drag, MotionState* state) {
   ComputeForces(*state, &force_, drag);
-  const double m = params_.mass;
+  DivideByMass(&force_);
   for (int i = 0; i < nodes_; ++i) {
-    state->velocity[i] += force_[i] / m * h;
+    state->velocity[i] += force_[i] * h;
     state->position[i] += state->velocity[i] * h;
   }
+}
+
+void SoftBody::DivideByMass(std::vector<Vec2>* force) const {
+  // x / 1 is x exactly (IEEE division is correctly rounded), so the
+  // default mass skips the divisions and keeps the bits.
+  const double m = params_.mass;
+  if (m == 1.0) return;
+  for (Vec2& f : *force) f = f / m;
 }
 
 void SoftBody::Acceleration(const MotionState& state, bool drag,
                             std::vector<Vec2>* out) {
   ComputeForces(state, out, drag);
-  const double m = params_.mass;
-  for (Vec2& a : *out) a = a / m;
+  DivideByMass(out);
 }
 
 void SoftBody::Measure(const std::vector<Vec2>& position,
@@ -229,8 +256,7 @@ void SoftBody::AccelerationFrom(const Geometry& geometry,
       force[b] += half;
     }
   }
-  const double m = params_.mass;
-  for (Vec2& a : force) a = a / m;
+  DivideByMass(out);
 }
 
 void SoftBody::VerletStep(double h, bool drag, MotionState* state) {
@@ -290,6 +316,43 @@ void SoftBody::Rk4Step(double h, bool drag, MotionState* state) {
         (k_[0][i] + k_[2][i] * 2.0 + k_[4][i] * 2.0 + k_[6][i]) * sixth;
     state->velocity[i] +=
         (k_[1][i] + k_[3][i] * 2.0 + k_[5][i] * 2.0 + k_[7][i]) * sixth;
+  }
+}
+
+void SoftBody::Rk3Step(double h, bool drag, const Rk3Tableau& t,
+                       MotionState* state) {
+  // k_[2s] = dx/dt, k_[2s + 1] = dv/dt at stage s.
+  std::vector<Vec2>& dx1 = k_[0];
+  std::vector<Vec2>& dv1 = k_[1];
+  std::vector<Vec2>& dx2 = k_[2];
+  std::vector<Vec2>& dv2 = k_[3];
+  std::vector<Vec2>& dx3 = k_[4];
+  std::vector<Vec2>& dv3 = k_[5];
+  stage_.position.resize(nodes_);
+  stage_.velocity.resize(nodes_);
+  dx1.resize(nodes_);
+  dx2.resize(nodes_);
+  dx3.resize(nodes_);
+  for (int i = 0; i < nodes_; ++i) dx1[i] = state->velocity[i];
+  Acceleration(*state, drag, &dv1);
+  const double h21 = h * t.a21;
+  for (int i = 0; i < nodes_; ++i) {
+    stage_.position[i] = state->position[i] + dx1[i] * h21;
+    stage_.velocity[i] = state->velocity[i] + dv1[i] * h21;
+    dx2[i] = stage_.velocity[i];
+  }
+  Acceleration(stage_, drag, &dv2);
+  for (int i = 0; i < nodes_; ++i) {
+    stage_.position[i] =
+        state->position[i] + (dx1[i] * t.a31 + dx2[i] * t.a32) * h;
+    stage_.velocity[i] =
+        state->velocity[i] + (dv1[i] * t.a31 + dv2[i] * t.a32) * h;
+    dx3[i] = stage_.velocity[i];
+  }
+  Acceleration(stage_, drag, &dv3);
+  for (int i = 0; i < nodes_; ++i) {
+    state->position[i] += (dx1[i] * t.b1 + dx2[i] * t.b2 + dx3[i] * t.b3) * h;
+    state->velocity[i] += (dv1[i] * t.b1 + dv2[i] * t.b2 + dv3[i] * t.b3) * h;
   }
 }
 

@@ -35,6 +35,14 @@ class MotionStepper {
 
 class SoftBody : public MotionStepper {
  public:
+  // A three-stage explicit Runge-Kutta scheme, y' = f(y) with y = (x, v):
+  //   k1 = f(y), k2 = f(y + h a21 k1), k3 = f(y + h (a31 k1 + a32 k2)),
+  //   y <- y + h (b1 k1 + b2 k2 + b3 k3),
+  // each product and sum evaluated as written, left to right.
+  struct Rk3Tableau {
+    double a21, a31, a32, b1, b2, b3;
+  };
+
   // Actuation starts at 0 (rest lengths L0). Precondition: the body's
   // indices are valid and chambers have rest_area > 0 (BuildBody and
   // SceneFromProto guarantee both).
@@ -68,7 +76,9 @@ class SoftBody : public MotionStepper {
   //     the next sub-step's a0 as long as the positions are unchanged bit
   //     for bit, so each sub-step measures the geometry once; only the
   //     velocity-dependent terms and the rest lengths are evaluated twice;
-  //   RK4: the classical fourth-order Runge-Kutta on (x, v).
+  //   RK4: the classical fourth-order Runge-Kutta on (x, v);
+  //   SSPRK3, RALSTON3: three-stage third-order Runge-Kutta on (x, v)
+  //     (Rk3Tableau below), three force evaluations.
   // With DragUpdate::kStable the integrator sees no drag; instead
   // ApplyStableDrag(h / 2) runs before and after it (Strang splitting).
   void Step(MotionState* state) override;
@@ -99,6 +109,8 @@ class SoftBody : public MotionStepper {
   void EulerStep(double h, bool drag, MotionState* state);
   void VerletStep(double h, bool drag, MotionState* state);
   void Rk4Step(double h, bool drag, MotionState* state);
+  void Rk3Step(double h, bool drag, const Rk3Tableau& tableau,
+               MotionState* state);
   // What the forces need of the positions alone (model §7): each spring's
   // length and unit vector, each skin edge's length and tangent, and the
   // pressure force on each node.
@@ -118,6 +130,8 @@ class SoftBody : public MotionStepper {
   void AccelerationFrom(const Geometry& geometry,
                         const std::vector<Vec2>& velocity, bool drag,
                         std::vector<Vec2>* out) const;
+  // F <- F / m, node by node.
+  void DivideByMass(std::vector<Vec2>* force) const;
   // force_ <- acceleration F / m at `state`.
   void Acceleration(const MotionState& state, bool drag,
                     std::vector<Vec2>* out);

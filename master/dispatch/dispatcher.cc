@@ -86,6 +86,9 @@ Result<std::unique_ptr<Dispatcher>> Dispatcher::Create(
     return Status::IoError("cannot bind " + dispatcher->options_.endpoint +
                            ": " + e.what());
   }
+  dispatcher->idle_since_ = o.clock->Now();
+  dispatcher->last_notice_ = dispatcher->idle_since_;
+  if (!o.notices) o.notices = o.log;
   dispatcher->options_.log("listening on " + dispatcher->endpoint_ +
                            " (build " + protocol::BuildId() + ")" +
                            (curve ? ", CurveZMQ with " +
@@ -304,6 +307,7 @@ void Dispatcher::Greet(const std::string& identity, const v1::Hello& hello,
     }
   }
   WorkerState& worker = workers_[identity];
+  ever_joined_ = true;
   worker.name = name;
   worker.instance = hello.instance();
   worker.threads = static_cast<int>(hello.threads());  // Checked by Decode.
@@ -487,6 +491,7 @@ bool Dispatcher::SendWork(const std::string& identity, WorkerState& worker,
 void Dispatcher::Housekeep(std::vector<Completion>* done) {
   CollectIsolated(done);
   const TimePoint now = options_.clock->Now();
+  NoticeIdle(now);
   const auto silent_limit =
       std::chrono::milliseconds(protocol::kLiveness * options_.heartbeat_ms);
   std::vector<std::string> dead;
@@ -531,6 +536,34 @@ void Dispatcher::Housekeep(std::vector<Completion>* done) {
     Unlease(id);
     Requeue(id, /*counts_as_attempt=*/true);
   }
+}
+
+void Dispatcher::NoticeIdle(TimePoint now) {
+  if (!workers_.empty() || options_.idle_notice_ms <= 0) return;
+  const auto every = std::chrono::milliseconds(options_.idle_notice_ms);
+  if (now - std::max(idle_since_, last_notice_) < every) return;
+  last_notice_ = now;
+  const auto idle =
+      std::chrono::duration_cast<std::chrono::seconds>(now - idle_since_);
+  options_.notices(std::string(ever_joined_ ? "no worker connected for "
+                                            : "no worker has joined in ") +
+                   std::to_string(idle.count()) + " s; listening on " +
+                   endpoint_ + " (" + std::to_string(pending_.size()) +
+                   " individuals waiting)");
+}
+
+void Dispatcher::Farewell(const std::string& reason) {
+  std::vector<std::string> identities;
+  for (const auto& [identity, worker] : workers_)
+    identities.push_back(identity);
+  for (const std::string& identity : identities) {
+    v1::Envelope goodbye;
+    goodbye.mutable_goodbye()->set_reason(reason);
+    Send(identity, std::move(goodbye));
+  }
+  // Delivered at close rather than dropped (the socket lingers no longer
+  // than this).
+  socket_->set(zmq::sockopt::linger, 1000);
 }
 
 void Dispatcher::Requeue(uint64_t individual, bool counts_as_attempt) {
@@ -656,6 +689,7 @@ void Dispatcher::DropWorker(const std::string& identity, bool died) {
   if (it == workers_.end()) return;
   const std::set<uint64_t> leased = std::move(it->second.leased);
   workers_.erase(it);
+  if (workers_.empty()) idle_since_ = options_.clock->Now();
   // Highest first, so the queue front ends up in increasing order.
   for (auto id = leased.rbegin(); id != leased.rend(); ++id) {
     if (pending_.count(*id) != 0) Requeue(*id, died);

@@ -78,6 +78,13 @@ struct DispatcherOptions {
   // result again to the next master if this one dies before that.
   bool acknowledge_on_receipt = true;
   LogSink log = Prefixed("dispatcher", StderrSink);
+  // While no worker is connected, a line every this many ms (of the
+  // clock) says so, with the endpoint listened on ("no worker has joined
+  // in 30 s; listening on tcp://..."); 0: never. It goes to `notices`, or
+  // to `log` when `notices` is empty (a master whose routine log is off
+  // still says so).
+  int idle_notice_ms = 30000;
+  LogSink notices;
   // The time heartbeats, liveness and leases are kept by (not owned; it
   // must outlive the dispatcher). Tests give a ManualClock: then Poll(0)
   // makes one pass, and a longer Poll returns only with completions or
@@ -123,6 +130,12 @@ class Dispatcher final : public EvaluationService {
   // Serves workers for up to `timeout_ms` (of the clock's time) and returns
   // the completions that came in, as soon as there are some.
   std::vector<Completion> Poll(int timeout_ms) override;
+
+  // Tells every connected worker that the run is over (a Goodbye with
+  // `reason`; docs/protocol.md), so that workers started to serve it may
+  // exit. The messages are delivered before the dispatcher is destroyed
+  // (up to a second's wait then).
+  void Farewell(const std::string& reason);
 
   // Tells the workers that delivered these completions' results that they
   // may forget them (with acknowledge_on_receipt off; otherwise, and for
@@ -189,6 +202,8 @@ class Dispatcher final : public EvaluationService {
   // Removes a queued individual from its queue.
   void Unqueue(uint64_t individual);
   void Housekeep(std::vector<Completion>* done);
+  // The idle notice, when it is due.
+  void NoticeIdle(TimePoint now);
   // Back to the queue after a lease ended without a result; after
   // kMaxAttempts counted, to the isolation instead.
   void Requeue(uint64_t individual, bool counts_as_attempt);
@@ -241,6 +256,9 @@ class Dispatcher final : public EvaluationService {
   // identity that delivered each one's result.
   std::map<uint64_t, std::string> delivered_;
   std::set<std::string> strangers_;  // Unknown identities already logged.
+  bool ever_joined_ = false;
+  TimePoint idle_since_;   // When the last worker left (or the start).
+  TimePoint last_notice_;  // Of the idle notice.
   DispatcherStats stats_;
 };
 

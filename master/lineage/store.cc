@@ -5,13 +5,12 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <chrono>
 #include <cstdio>
 #include <cstring>
-#include <ctime>
 
 #include <google/protobuf/text_format.h>
 
+#include "common/base/utc_time.h"
 #include "common/protocol/genome_wire.h"
 #include "master/lineage/schema.h"
 
@@ -39,23 +38,6 @@ Status InTransaction(sql::Database& db, Body body) {
 }
 
 }  // namespace
-
-std::string UtcNow() {
-  const auto now = std::chrono::system_clock::now();
-  const std::time_t seconds = std::chrono::system_clock::to_time_t(now);
-  const int millis =
-      static_cast<int>(std::chrono::duration_cast<std::chrono::milliseconds>(
-                           now.time_since_epoch())
-                           .count() %
-                       1000);
-  std::tm utc;
-  gmtime_r(&seconds, &utc);
-  char stamp[96];
-  std::snprintf(stamp, sizeof(stamp), "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ",
-                utc.tm_year + 1900, utc.tm_mon + 1, utc.tm_mday, utc.tm_hour,
-                utc.tm_min, utc.tm_sec, millis);
-  return stamp;
-}
 
 std::string Hex64(uint64_t value) {
   char text[17];

@@ -264,8 +264,6 @@ class GenerationWrite {
   Status failed_;
 };
 
-// "2026-11-21T14:03:07.123Z", now.
-std::string UtcNow();
 // 16 lowercase hex digits.
 std::string Hex64(uint64_t value);
 

@@ -144,6 +144,7 @@ std::vector<std::string> WorkerArgv(const WorkerOptions& options) {
     argv.push_back(std::to_string(options.heartbeat_ms));
   }
   if (options.null_evaluation) argv.push_back("--null-evaluation");
+  if (options.exit_when_done) argv.push_back("--exit-when-done");
   return argv;
 }
 

@@ -77,6 +77,7 @@ struct WorkerOptions {
   int threads = 1;
   int heartbeat_ms = 0;  // Until the master's welcome; 0: the default.
   bool null_evaluation = false;
+  bool exit_when_done = false;  // Exit when the master's run is over.
   // Where each worker's standard output and error are appended ("": the
   // parent's).
   std::string log_path;

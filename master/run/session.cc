@@ -9,6 +9,7 @@
 #include <zmq.hpp>
 
 #include "common/evaluation/model_config.h"
+#include "common/protocol/endpoint.h"
 #include "common/security/curve_keys.h"
 #include "master/dispatch/dispatcher.h"
 #include "master/lineage/store.h"
@@ -38,6 +39,10 @@ bool Exists(const std::string& path) { return access(path.c_str(), F_OK) == 0; }
 // What can be said of the request without reading any file; a mistyped
 // path must not leave an empty store behind.
 Status CheckRequest(const SessionOptions& o) {
+  // (An empty path would be a private in-memory store, lost at exit.)
+  if (o.db_path.empty()) {
+    return Status::InvalidArgument("--db needs the path of a lineage store");
+  }
   switch (o.choice) {
     case RunChoice::kStart:
       if (o.config_path.empty()) {
@@ -72,11 +77,15 @@ Result<std::optional<RunSettings>> ReadSettings(const SessionOptions& o) {
 
 // The dispatcher's options, the keys read and the endpoint checked.
 Result<DispatcherOptions> ListenOptions(const SessionOptions& o) {
+  Status endpoint =
+      protocol::CheckEndpoint(o.bind, protocol::EndpointUse::kBind);
+  if (!endpoint.ok()) return endpoint.WithPrefix("--bind");
   DispatcherOptions options;
   options.endpoint = o.bind;
   options.heartbeat_ms = o.heartbeat_ms;
   options.insecure = o.insecure;
   options.log = o.dispatcher_log;
+  options.notices = o.log;  // "No worker has joined", even from evolve.
   // Workers keep each result until the run has committed it.
   options.acknowledge_on_receipt = false;
   if (!o.curve_secret_file.empty()) {
@@ -142,6 +151,7 @@ Status StartLocalWorkers(const SessionOptions& o, const Dispatcher& dispatcher,
   worker.binary = WorkerBesideThisProgram();
   worker.endpoint = dispatcher.endpoint();
   worker.threads = 1;
+  worker.exit_when_done = true;
   worker.log_path = o.worker_log;
   Status status = workers->Start(o.local_workers, worker);
   if (!status.ok()) return status;
@@ -159,6 +169,8 @@ Status Serve(EvolutionRun* run, Dispatcher* dispatcher, const SessionOptions& o,
   status = run->Run(dispatcher, stop, o.progress);
   if (!status.ok()) return status;
   if (run->finished()) {
+    // Workers started for this run may go (--exit-when-done).
+    dispatcher->Farewell("the run is finished");
     o.log("finished; the best: animat lineage best --db " + o.db_path);
   } else {
     o.log("stopped; resume with: " + o.resume_command);

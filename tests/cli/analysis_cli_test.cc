@@ -14,7 +14,7 @@
 #include "common/io/proto_file.h"
 #include "master/lineage/store.h"
 #include "tests/cli/run_animat.h"
-#include "tests/figures/xml.h"
+#include "tests/svg/xml.h"
 #include "tests/test_util.h"
 
 namespace animat {

@@ -111,6 +111,9 @@ wait_job_gone "$job"
 grep -q "resuming" "$work/job-$job.log" || fail "the last job did not resume"
 grep -q "CurveZMQ with 1 allowed worker keys" "$work/job-$job.log" ||
   fail "the last job did not use CurveZMQ"
+# The workers left by themselves when the master said the run was over.
+[ "$(grep -c "exiting (--exit-when-done)" "$work/job-$job.log")" = 2 ] ||
+  fail "the workers did not exit when the run finished"
 
 # The same individuals, parents, evaluations and generations as the
 # uninterrupted run.

@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "tests/analysis/synthetic_swimmer.h"
-#include "tests/figures/xml.h"
+#include "tests/svg/xml.h"
 
 namespace animat::figures {
 namespace {

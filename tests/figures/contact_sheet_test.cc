@@ -6,8 +6,8 @@
 #include <cstdlib>
 #include <sstream>
 
-#include "figures/svg.h"
-#include "tests/figures/xml.h"
+#include "common/svg/svg.h"
+#include "tests/svg/xml.h"
 
 namespace animat::figures {
 namespace {
@@ -113,7 +113,7 @@ TEST(ContactSheetTest, EveryTextFitsItsPlaceWithNothingCut) {
       const double size = std::atof(text->Attribute("font-size").c_str());
       const double x = std::atof(text->Attribute("x").c_str());
       const double y = std::atof(text->Attribute("y").c_str());
-      const double w = TextWidth(text->text, size);
+      const double w = svg::TextWidth(text->text, size);
       const bool middle = text->Attribute("text-anchor") == "middle";
       const double left = middle ? x - w / 2 : x;
       EXPECT_GE(left, 0) << text->text;
@@ -133,18 +133,6 @@ TEST(ContactSheetTest, EveryTextFitsItsPlaceWithNothingCut) {
       EXPECT_NE(words.find(whole), std::string::npos) << whole << "\n" << words;
     }
   }
-}
-
-TEST(SvgTest, WrapsTextAtSpacesToAWidth) {
-  EXPECT_EQ(WrapText("one two three", 1000, 10),
-            (std::vector<std::string>{"one two three"}));
-  // 6 pixels a character at size 10: "one two" is 42 wide.
-  EXPECT_EQ(WrapText("one two three", 45, 10),
-            (std::vector<std::string>{"one two", "three"}));
-  EXPECT_EQ(WrapText("extraordinarily long", 30, 10),
-            (std::vector<std::string>{"extraordinarily", "long"}));
-  EXPECT_TRUE(WrapText("", 30, 10).empty());
-  EXPECT_EQ(TextWidth("é–a", 10), 18);  // Characters, not bytes.
 }
 
 }  // namespace

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "tests/figures/xml.h"
+#include "tests/svg/xml.h"
 #include "tests/test_util.h"
 
 namespace animat::figures {

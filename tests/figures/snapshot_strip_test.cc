@@ -5,7 +5,7 @@
 #include <set>
 
 #include "tests/analysis/synthetic_swimmer.h"
-#include "tests/figures/xml.h"
+#include "tests/svg/xml.h"
 
 namespace animat::figures {
 namespace {

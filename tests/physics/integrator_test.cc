@@ -17,9 +17,9 @@ using testing::MustBuild;
 using testing::RandomBody;
 using testing::Source;
 
-const Integrator kIntegrators[] = {Integrator::kSemiImplicitEuler,
-                                   Integrator::kVelocityVerlet,
-                                   Integrator::kRk4};
+const Integrator kIntegrators[] = {
+    Integrator::kSemiImplicitEuler, Integrator::kVelocityVerlet,
+    Integrator::kRk4, Integrator::kSsprk3, Integrator::kRalston3};
 
 // A deformed, moving random body with constant actuation: a smooth problem
 // (no drag, whose |v| v is only once differentiable at v = 0).
@@ -103,6 +103,83 @@ TEST(IntegratorTest, Rk4IsFourthOrder) {
   EXPECT_LT(ratio, 20.0);
 }
 
+TEST(IntegratorTest, Ssprk3IsThirdOrder) {
+  const double ratio = ConvergenceRatio(Integrator::kSsprk3, 1);
+  EXPECT_GT(ratio, 6.5);
+  EXPECT_LT(ratio, 9.5);
+}
+
+TEST(IntegratorTest, Ralston3IsThirdOrder) {
+  const double ratio = ConvergenceRatio(Integrator::kRalston3, 1);
+  EXPECT_GT(ratio, 6.5);
+  EXPECT_LT(ratio, 9.5);
+}
+
+// One step of a three-stage scheme written out from its Butcher tableau
+// with ComputeForces: y' = f(y), y = (x, v), f = (v, F(x, v) / m).
+MotionState Rk3ByHand(SoftBody* body, const MotionState& y, double h,
+                      const double a21, const double a31, const double a32,
+                      const double b1, const double b2, const double b3) {
+  const int n = static_cast<int>(y.position.size());
+  const double m = body->params().mass;
+  std::vector<Vec2> f1, f2, f3;
+  body->ComputeForces(y, &f1);
+  MotionState y2 = y;
+  for (int i = 0; i < n; ++i) {
+    y2.position[i] = y.position[i] + y.velocity[i] * (h * a21);
+    y2.velocity[i] = y.velocity[i] + f1[i] / m * (h * a21);
+  }
+  body->ComputeForces(y2, &f2);
+  MotionState y3 = y;
+  for (int i = 0; i < n; ++i) {
+    y3.position[i] =
+        y.position[i] + (y.velocity[i] * a31 + y2.velocity[i] * a32) * h;
+    y3.velocity[i] = y.velocity[i] + (f1[i] / m * a31 + f2[i] / m * a32) * h;
+  }
+  body->ComputeForces(y3, &f3);
+  MotionState out = y;
+  for (int i = 0; i < n; ++i) {
+    out.position[i] +=
+        (y.velocity[i] * b1 + y2.velocity[i] * b2 + y3.velocity[i] * b3) * h;
+    out.velocity[i] += (f1[i] / m * b1 + f2[i] / m * b2 + f3[i] / m * b3) * h;
+  }
+  return out;
+}
+
+TEST(IntegratorTest, ThirdOrderSchemesFollowTheirTableauxBitForBit) {
+  // SSPRK3 (Shu-Osher) and Ralston's third order, as published, against
+  // SoftBody's steps, with a non-unit mass and drag on.
+  struct Case {
+    Integrator integrator;
+    double a21, a31, a32, b1, b2, b3;
+  };
+  const Case cases[] = {
+      {Integrator::kSsprk3, 1.0, 0.25, 0.25, 1.0 / 6.0, 1.0 / 6.0, 2.0 / 3.0},
+      {Integrator::kRalston3, 0.5, 0.0, 0.75, 2.0 / 9.0, 1.0 / 3.0, 4.0 / 9.0},
+  };
+  for (const Case& c : cases) {
+    const Problem p = SmoothProblem(23);
+    PhysicsParams params;
+    params.integrator = c.integrator;
+    params.mass = 1.5;
+    SoftBody body(p.body, params);
+    body.SetActuation(p.expand, p.contract);
+    MotionState stepped = p.start;
+    MotionState by_hand = p.start;
+    for (int step = 0; step < 20; ++step) {
+      body.Step(&stepped);
+      by_hand = Rk3ByHand(&body, by_hand, params.dt, c.a21, c.a31, c.a32, c.b1,
+                          c.b2, c.b3);
+    }
+    for (int i = 0; i < p.body.nodes(); ++i) {
+      EXPECT_EQ(stepped.position[i], by_hand.position[i])
+          << IntegratorName(c.integrator) << " node " << i;
+      EXPECT_EQ(stepped.velocity[i], by_hand.velocity[i])
+          << IntegratorName(c.integrator) << " node " << i;
+    }
+  }
+}
+
 TEST(IntegratorTest, HigherOrderIsMoreAccurateAtTheSameStep) {
   const Problem p = SmoothProblem(5);
   const MotionState reference = Simulate(p, NoDrag(Integrator::kRk4, 64), 40);
@@ -112,8 +189,15 @@ TEST(IntegratorTest, HigherOrderIsMoreAccurateAtTheSameStep) {
       Simulate(p, NoDrag(Integrator::kVelocityVerlet, 1), 40), reference);
   const double rk4 =
       MaxDistance(Simulate(p, NoDrag(Integrator::kRk4, 1), 40), reference);
+  const double ssprk3 =
+      MaxDistance(Simulate(p, NoDrag(Integrator::kSsprk3, 1), 40), reference);
+  const double ralston3 =
+      MaxDistance(Simulate(p, NoDrag(Integrator::kRalston3, 1), 40), reference);
   EXPECT_LT(verlet, euler);
-  EXPECT_LT(rk4, verlet);
+  EXPECT_LT(ssprk3, verlet);
+  EXPECT_LT(ralston3, verlet);
+  EXPECT_LT(rk4, ssprk3);
+  EXPECT_LT(rk4, ralston3);
 }
 
 TEST(VelocityVerletTest, EqualsTwoFullForceEvaluationsPerStepToRounding) {

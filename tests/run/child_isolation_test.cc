@@ -88,15 +88,17 @@ TEST(ChildIsolationTest, OnlyACrashSignalIsACrash) {
 // The child finds its request where its command line says, and what it
 // writes where the command line says is the result.
 TEST(ChildIsolationTest, AChildReadsItsRequestAndItsResultIsRead) {
-  const std::string copy = ::testing::TempDir() + "/isolation-request-" +
-                           std::to_string(getpid());
+  const std::string copy =
+      ::testing::TempDir() + "/isolation-request-" + std::to_string(getpid());
   // The script's arguments: $0 = --evaluate-one, $1 = REQUEST,
   // $2 = --result, $3 = RESULT. It keeps a copy of the request and
   // answers with a WorkResult of individual 42 and genome hash
   // 0x0807060504030201 (fields 1 and 2), byte by byte.
   std::unique_ptr<ChildIsolation> isolation = Make(
       "test \"$0\" = --evaluate-one && test \"$2\" = --result && "
-      "cp \"$1\" " + copy + " && printf '\\010\\052\\021\\001\\002"
+      "cp \"$1\" " +
+      copy +
+      " && printf '\\010\\052\\021\\001\\002"
       "\\003\\004\\005\\006\\007\\010' > \"$3\"");
   ASSERT_NE(isolation, nullptr);
   v1::Config config;

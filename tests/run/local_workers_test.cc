@@ -162,11 +162,12 @@ TEST_F(LocalWorkersTest, AWorkersCommandLineSaysWhatItsOptionsSay) {
                                      "tcp://10.0.0.1:5555", "--threads", "4"}));
   options.heartbeat_ms = 100;
   options.null_evaluation = true;
-  EXPECT_EQ(
-      WorkerArgv(options),
-      (std::vector<std::string>{"/opt/animat-worker", "--connect",
-                                "tcp://10.0.0.1:5555", "--threads", "4",
-                                "--heartbeat-ms", "100", "--null-evaluation"}));
+  options.exit_when_done = true;
+  EXPECT_EQ(WorkerArgv(options),
+            (std::vector<std::string>{
+                "/opt/animat-worker", "--connect", "tcp://10.0.0.1:5555",
+                "--threads", "4", "--heartbeat-ms", "100", "--null-evaluation",
+                "--exit-when-done"}));
 }
 
 TEST_F(LocalWorkersTest, WorkersThatExitAreReportedAndDropped) {

@@ -1,13 +1,15 @@
-#include "figures/svg.h"
+#include "common/svg/svg.h"
 
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <string>
+#include <vector>
 
-#include "tests/figures/xml.h"
+#include "tests/svg/xml.h"
 #include "tests/test_util.h"
 
-namespace animat::figures {
+namespace animat::svg {
 namespace {
 
 TEST(XmlReaderTest, AcceptsWellFormedAndRejectsMalformedDocuments) {
@@ -76,5 +78,17 @@ TEST(SvgTest, WritesAWellFormedDocumentAndClosesOpenGroups) {
   EXPECT_EQ(root->FindAll("text")[0]->text, "Fish & \"chips\"");
 }
 
+TEST(SvgTest, WrapsTextAtSpacesToAWidth) {
+  EXPECT_EQ(WrapText("one two three", 1000, 10),
+            (std::vector<std::string>{"one two three"}));
+  // 6 pixels a character at size 10: "one two" is 42 wide.
+  EXPECT_EQ(WrapText("one two three", 45, 10),
+            (std::vector<std::string>{"one two", "three"}));
+  EXPECT_EQ(WrapText("extraordinarily long", 30, 10),
+            (std::vector<std::string>{"extraordinarily", "long"}));
+  EXPECT_TRUE(WrapText("", 30, 10).empty());
+  EXPECT_EQ(TextWidth("é–a", 10), 18);  // Characters, not bytes.
+}
+
 }  // namespace
-}  // namespace animat::figures
+}  // namespace animat::svg

@@ -1,11 +1,13 @@
 // A small writer of SVG documents: elements are appended as text, numbers
 // printed with a fixed number of decimals (the same text on every
 // machine), text and attribute values escaped. Every figure of figures/
-// is built with it.
+// is built with it; the accuracy report's plot (bench/accuracy) uses its
+// escape and text width. Depends on common/base only.
 //
-// Not thread-safe (a value type; one thread builds one document).
-#ifndef ANIMAT_FIGURES_SVG_H_
-#define ANIMAT_FIGURES_SVG_H_
+// The functions are pure and thread-safe; an SvgWriter is not (a value
+// type; one thread builds one document).
+#ifndef ANIMAT_COMMON_SVG_SVG_H_
+#define ANIMAT_COMMON_SVG_SVG_H_
 
 #include <string>
 #include <string_view>
@@ -13,7 +15,7 @@
 
 #include "common/base/vec2.h"
 
-namespace animat::figures {
+namespace animat::svg {
 
 // `value` with at most `decimals` decimals, trailing zeros dropped ("12.5",
 // "3", "-0.25"); non-finite values print as "0" (SVG has no NaN).
@@ -70,6 +72,6 @@ class SvgWriter {
   int open_groups_ = 0;
 };
 
-}  // namespace animat::figures
+}  // namespace animat::svg
 
-#endif  // ANIMAT_FIGURES_SVG_H_
+#endif  // ANIMAT_COMMON_SVG_SVG_H_

@@ -1,4 +1,4 @@
-// A strict reader of the XML the figures write, for tests: it accepts
+// A strict reader of the XML the SVG writers write, for tests: it accepts
 // well-formed XML 1.0 documents made of one root element, nested elements
 // with quoted attributes, character data, the five predefined entities and
 // numeric character references, comments, and a leading declaration; and
@@ -6,8 +6,8 @@
 // attribute given twice or unquoted, a bare '<' or '&', text outside the
 // root). Not a general XML parser: no DTDs, CDATA or processing
 // instructions besides the declaration.
-#ifndef ANIMAT_TESTS_FIGURES_XML_H_
-#define ANIMAT_TESTS_FIGURES_XML_H_
+#ifndef ANIMAT_TESTS_SVG_XML_H_
+#define ANIMAT_TESTS_SVG_XML_H_
 
 #include <cctype>
 #include <map>
@@ -252,4 +252,4 @@ class XmlReader {
 
 }  // namespace animat::testing
 
-#endif  // ANIMAT_TESTS_FIGURES_XML_H_
+#endif  // ANIMAT_TESTS_SVG_XML_H_

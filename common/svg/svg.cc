@@ -1,9 +1,9 @@
-#include "figures/svg.h"
+#include "common/svg/svg.h"
 
 #include <cmath>
 #include <cstdio>
 
-namespace animat::figures {
+namespace animat::svg {
 
 std::string Number(double value, int decimals) {
   if (!std::isfinite(value)) return "0";
@@ -226,4 +226,4 @@ std::string SvgWriter::Finish() {
   return std::move(out_);
 }
 
-}  // namespace animat::figures
+}  // namespace animat::svg

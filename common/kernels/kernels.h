@@ -1,0 +1,64 @@
+// The model's hot loops over cells, compiled once per instruction-set path
+// (isa.h) and run on the path in use. Every path gives the same bits.
+//
+// The arguments are plain arrays owned by the caller; a kernel keeps no
+// state, allocates nothing and never fails. Thread-safe for distinct
+// outputs.
+#ifndef ANIMAT_COMMON_KERNELS_KERNELS_H_
+#define ANIMAT_COMMON_KERNELS_KERNELS_H_
+
+#include <cstddef>
+
+#include "common/kernels/isa.h"
+
+namespace animat::kernels {
+
+// One synchronous network update of `cells` cells (docs/model.md §3):
+// first, for each source row r in order and each of its weights k in
+// order, activation[row_target[k]][c] += row_weight[k] * source[r][c];
+// then, for each target t, with a = activation[target_activation[t]][c]
+// and L = level[t][c]:
+//   L <- clamp(L + (tanh(a * 0.5) - L) * dt, 0, 1)
+// (TanhF or Tanh of common/base/fast_math.h; a NaN level stays NaN).
+// Activation rows are `capacity` apart and hold the starting sums on
+// entry. No output row may overlap an input row.
+template <typename S>
+struct GrnStepArgs {
+  int cells = 0;
+  int capacity = 0;
+  int sources = 0;
+  const S* const* source = nullptr;  // [sources] rows of cells values.
+  const int* row_begin = nullptr;    // [sources + 1], into the two below.
+  const int* row_target = nullptr;   // Activation row of each weight.
+  const S* row_weight = nullptr;
+  S* activation = nullptr;
+  int targets = 0;
+  const int* target_activation = nullptr;  // [targets]
+  S* const* level = nullptr;               // [targets] rows of cells values.
+  S dt = 0;
+};
+void GrnStep(const GrnStepArgs<float>& args);
+void GrnStep(const GrnStepArgs<double>& args);
+// The same on a given path (for tests and benchmarks). Precondition:
+// IsaSupported(isa).
+void GrnStep(Isa isa, const GrnStepArgs<float>& args);
+void GrnStep(Isa isa, const GrnStepArgs<double>& args);
+
+// The signals' kernel and delay of each cell pair from its distance d
+// (docs/model.md §5): kernel[p] = Exp(-d / kernel_length) and
+// delay[p] = min(max_delay, floor(d / delay_length + 0.5)).
+struct PairKernelArgs {
+  size_t pairs = 0;
+  const double* distance = nullptr;
+  double kernel_length = 1.0;
+  double delay_length = 1.0;
+  double max_delay = 0.0;
+  double* kernel = nullptr;
+  double* delay = nullptr;
+};
+void PairKernels(const PairKernelArgs& args);
+void PairKernels(Isa isa, const PairKernelArgs& args);
+
+}  // namespace animat::kernels
+
+#endif  // ANIMAT_COMMON_KERNELS_KERNELS_H_
