@@ -1,5 +1,6 @@
 // animat lineage best|ancestors ID|genome ID -o FILE|export --format alife
 //   --db FILE [--run R]
+// animat lineage configs --db FILE [--run R] [--generation G [-o FILE]]
 // animat lineage upgrade --db FILE
 //
 // Questions about a lineage store (docs/lineage.md). Read-only: it can run
@@ -28,6 +29,7 @@ struct Options {
   uint64_t id = 0;
   std::string output = "-";
   std::string format = "alife";
+  std::optional<int> generation;
 };
 
 std::string FitnessText(const std::optional<double>& fitness) {
@@ -114,6 +116,42 @@ int Export(const Options& o) {
   });
 }
 
+// The configuration history, one line a configuration; with --generation,
+// the configuration in force at that generation, as a run configuration
+// file (text format).
+int Configs(const Options& o) {
+  return WithRun(o, [&](lineage::Store& store, int64_t run) {
+    Result<std::vector<lineage::RunConfigRow>> history =
+        store.ConfigHistory(run);
+    if (!history.ok()) return Fail(history.status().message());
+    if (o.generation) {
+      const lineage::RunConfigRow* in_force = nullptr;
+      for (const lineage::RunConfigRow& row : *history) {
+        if (row.from_generation <= *o.generation) in_force = &row;
+      }
+      if (in_force == nullptr) {
+        return Fail("run " + std::to_string(run) +
+                    " has no configuration recorded for generation " +
+                    std::to_string(*o.generation));
+      }
+      // Standard output in text format, like `animat config defaults`.
+      Status status = o.output == "-"
+                          ? WriteFile("-", SerializeProto(in_force->config,
+                                                          ProtoFormat::kText))
+                          : WriteProtoFile(o.output, in_force->config);
+      if (!status.ok()) return Fail(status.message());
+      return 0;
+    }
+    for (const lineage::RunConfigRow& row : *history) {
+      std::printf("%d: from generation %d, config %s, build \"%s\", %s: %s\n",
+                  row.change, row.from_generation, row.config_hash.c_str(),
+                  row.build_id.c_str(), row.recorded_at.c_str(),
+                  row.reason.c_str());
+    }
+    return 0;
+  });
+}
+
 int Upgrade(const Options& o) {
   Result<int> before = lineage::Store::Upgrade(o.db);
   if (!before.ok()) return Fail(before.status().message());
@@ -170,12 +208,27 @@ Command AddLineageCommand(CLI::App& app) {
       ->add_option("-o,--output", o->output,
                    "Output file; - for standard output")
       ->capture_default_str();
+  CLI::App* configs = lineage->add_subcommand(
+      "configs",
+      "The run's configurations, from which generation each (--force and "
+      "extensions change them); with --generation, the one in force then");
+  common(configs);
+  configs
+      ->add_option("--generation", o->generation,
+                   "Write the configuration in force at this generation")
+      ->check(CLI::Range(0, 100000000));
+  configs
+      ->add_option("-o,--output", o->output,
+                   "With --generation: output file (.txtpb or .json); - for "
+                   "standard output (text format)")
+      ->capture_default_str();
   CLI::App* upgrade = lineage->add_subcommand(
       "upgrade",
       "Bring a store written by an older animat to this build's schema");
   upgrade->add_option("--db", o->db, "The lineage store")->required();
-  return [o, best, ancestors, genome, upgrade] {
+  return [o, best, ancestors, genome, configs, upgrade] {
     if (upgrade->parsed()) return Upgrade(*o);
+    if (configs->parsed()) return Configs(*o);
     if (best->parsed()) return Best(*o);
     if (ancestors->parsed()) return Ancestors(*o);
     if (genome->parsed()) return GenomeOf(*o);

@@ -190,8 +190,8 @@ int Main(int argc, char** argv) {
   // results_fuzzer: every status, and some a master must refuse.
   const std::string results = "results_fuzzer";
   std::vector<v1::WorkResult> every;
-  for (int s = v1::EvaluationResult::OK;
-       s <= v1::EvaluationResult::NOT_EVALUATED; ++s) {
+  for (int s = v1::EvaluationResult::OK; s <= v1::EvaluationResult::CRASHED;
+       ++s) {
     const auto status = static_cast<v1::EvaluationResult::Status>(s);
     every.push_back(MakeResult(s, 1000 + s, status));
     out.Put(results, "results-" + v1::EvaluationResult::Status_Name(status),

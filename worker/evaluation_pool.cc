@@ -8,11 +8,12 @@
 
 #include "common/evaluation/evaluator.h"
 #include "common/genome/genome_proto.h"
+#include "common/protocol/protocol.h"
 
 namespace animat {
-namespace {
 
-v1::WorkResult Evaluated(const v1::WorkItem& item, const ModelConfig& config) {
+v1::WorkResult EvaluateItem(const v1::WorkItem& item,
+                            const ModelConfig& config) {
   v1::WorkResult out;
   out.set_individual(item.individual());
   out.set_genome_hash(item.genome_hash());
@@ -27,10 +28,21 @@ v1::WorkResult Evaluated(const v1::WorkItem& item, const ModelConfig& config) {
   }
   const std::chrono::duration<double> took =
       std::chrono::steady_clock::now() - start;
+  if (result.reason.size() > protocol::kMaxReasonBytes) {
+    // The master takes no longer reason (cut on a character's start).
+    size_t cut = protocol::kMaxReasonBytes;
+    while (cut > 0 &&
+           (static_cast<unsigned char>(result.reason[cut]) & 0xc0) == 0x80) {
+      --cut;
+    }
+    result.reason.resize(cut);
+  }
   *out.mutable_result() = EvaluationResultToProto(result);
   out.set_wall_seconds(took.count());
   return out;
 }
+
+namespace {
 
 v1::WorkResult NotEvaluated(const v1::WorkItem& item) {
   v1::WorkResult out;
@@ -86,7 +98,7 @@ void EvaluationPool::Loop() {
       queue_.pop_front();
       ++running_;
     }
-    Finish(Evaluated(item, config_), /*was_running=*/true);
+    Finish(EvaluateItem(item, config_), /*was_running=*/true);
   }
 }
 

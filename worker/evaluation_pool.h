@@ -21,6 +21,13 @@
 
 namespace animat {
 
+// Evaluates one item with a fresh simulation, on the calling thread: its
+// genome validated first (an invalid one gives INVALID_GENOME with the
+// reason), a reason longer than the protocol takes cut to
+// kMaxReasonBytes, and the wall time measured.
+v1::WorkResult EvaluateItem(const v1::WorkItem& item,
+                            const ModelConfig& config);
+
 class EvaluationPool {
  public:
   // `threads` >= 1. With `null_evaluation` nothing is simulated: every item

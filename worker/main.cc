@@ -1,13 +1,16 @@
 // animat-worker --connect ENDPOINT [--threads N] [--heartbeat-ms MS]
 //               [--exit-when-done] [--idle-timeout S]
 //               [--curve-server MASTER.pub --curve-secret WORKER.key]
+// animat-worker --evaluate-one REQUEST --result RESULT
 //
 // Evaluates animats for a master until SIGTERM or SIGINT; then hands back
 // the work it has not started, finishes what it is evaluating, and exits 0.
 // With --exit-when-done it also exits 0 when the master says its run is
 // over, and with --idle-timeout when no master has welcomed it for S
 // seconds. Exits 3 when the master refuses it (another protocol version or
-// build), 2 on a usage error.
+// build), 2 on a usage error. --evaluate-one (first, when given) is what
+// a master runs to evaluate one genome alone (worker/evaluate_one.h): exit
+// 0 once RESULT is written, 2 when it cannot be.
 #include <csignal>
 #include <iostream>
 #include <string>
@@ -19,6 +22,7 @@
 #include "common/kernels/isa.h"
 #include "common/protocol/endpoint.h"
 #include "common/security/curve_keys.h"
+#include "worker/evaluate_one.h"
 #include "worker/worker.h"
 
 namespace {
@@ -88,9 +92,32 @@ animat::Status ReadKeys(const KeyFiles& keys, animat::WorkerOptions& options) {
   return animat::Status::Ok();
 }
 
+// animat-worker --evaluate-one REQUEST --result RESULT.
+int EvaluateOneMain(int argc, char** argv) {
+  std::string request, result;
+  CLI::App app{
+      "animat-worker --evaluate-one: evaluates one genome alone for a master"};
+  app.add_option("--evaluate-one", request,
+                 "The request (animat.v1.IsolatedEvaluation, binary)")
+      ->required();
+  app.add_option("--result", result, "Where the WorkResult goes (binary)")
+      ->required();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+  return animat::EvaluateOne(
+      request, result, animat::Prefixed("animat-worker", animat::StderrSink));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "--evaluate-one") {
+    return EvaluateOneMain(argc, argv);
+  }
   animat::WorkerOptions options;
   options.threads = static_cast<int>(std::thread::hardware_concurrency());
   if (options.threads < 1) options.threads = 1;

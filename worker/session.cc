@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include "common/base/text.h"
 #include "common/evaluation/model_config.h"
 #include "common/protocol/genome_wire.h"
 #include "common/protocol/protocol.h"
@@ -30,6 +31,7 @@ Worker::Session::Session(Worker& worker, zmq::context_t& context)
     : worker_(worker),
       options_(worker.options_),
       socket_(context, zmq::socket_type::dealer),
+      handshakes_(context, socket_),
       heartbeat_ms_(worker.options_.heartbeat_ms) {
   socket_.set(zmq::sockopt::linger, 0);
   socket_.set(zmq::sockopt::maxmsgsize, protocol::kMaxMessageBytes);
@@ -58,6 +60,7 @@ Worker::SessionEnd Worker::Session::Run() {
     if (events.master) {
       if (std::optional<SessionEnd> end = Receive()) return *end;
     }
+    if (events.handshake) ReadHandshakes();
     if (pool() && events.pool) CollectFinished();
     if (welcomed_ && !worker_.unsent_.empty()) SendResults();
     if (MillisSince(last_sent_) >= heartbeat_ms_) {
@@ -99,14 +102,8 @@ void Worker::Session::SayGoodbye() {
       unsent.push_back(std::move(r));
     }
   }
-  if (!unsent.empty()) {
-    v1::Envelope results;
-    for (v1::WorkResult& r : unsent) {
-      *results.mutable_results()->add_results() = std::move(r);
-    }
-    unsent.clear();
-    Send(results);
-  }
+  // In messages of up to kMaxBatch, without credit (stopping).
+  if (!unsent.empty()) SendResults();
   v1::Envelope goodbye;
   for (uint64_t id : returned_) goodbye.mutable_goodbye()->add_returned(id);
   goodbye.mutable_goodbye()->set_reason("worker stopping");
@@ -114,17 +111,28 @@ void Worker::Session::SayGoodbye() {
 }
 
 Worker::Session::Events Worker::Session::Wait() {
-  zmq::pollitem_t items[2] = {
+  zmq::pollitem_t items[3] = {
       {static_cast<void*>(socket_), 0, ZMQ_POLLIN, 0},
+      {handshakes_.handle(), 0, ZMQ_POLLIN, 0},
       {nullptr, pool() ? pool()->wakeup_fd() : -1, ZMQ_POLLIN, 0}};
-  const int count = pool() ? 2 : 1;
+  // The monitor, then the pool, when there are.
+  int count = 1;
+  if (items[1].socket != nullptr) ++count;
+  if (pool()) items[count++] = items[2];
   const long timeout =
       std::max<long>(1, std::min<long>(heartbeat_ms_ - MillisSince(last_sent_),
                                        stopping_ ? 20 : 100));
   protocol::Poll(items, count, std::chrono::milliseconds(timeout));
   Events events;
   events.master = (items[0].revents & ZMQ_POLLIN) != 0;
-  events.pool = (items[1].revents & ZMQ_POLLIN) != 0;
+  for (int i = 1; i < count; ++i) {
+    if ((items[i].revents & ZMQ_POLLIN) == 0) continue;
+    if (items[i].socket != nullptr) {
+      events.handshake = true;
+    } else {
+      events.pool = true;
+    }
+  }
   return events;
 }
 
@@ -157,7 +165,9 @@ std::optional<Worker::SessionEnd> Worker::Session::Handle(
       Welcomed(envelope.welcome());
       break;
     case v1::Envelope::kRefuse:
-      options_.log("refused by the master: " + envelope.refuse().reason());
+      options_.log(
+          "refused by the master: " +
+          ForeignText(envelope.refuse().reason(), protocol::kMaxReasonBytes));
       return SessionEnd::kRefused;
     case v1::Envelope::kWork:
       Accept(envelope.work());
@@ -191,9 +201,9 @@ void Worker::Session::Welcomed(const v1::Welcome& welcome) {
   }
   welcomed_ = true;
   config_hash_ = welcome.config_hash();
-  if (welcome.heartbeat_ms() > 0) {
-    heartbeat_ms_ = static_cast<int>(welcome.heartbeat_ms());
-  }
+  // In [kMinHeartbeatMs, kMaxHeartbeatMs] (Decode checked it): kLiveness
+  // times it fits an int.
+  heartbeat_ms_ = static_cast<int>(welcome.heartbeat_ms());
   if (!pool() || worker_.pool_config_hash_ != config_hash_) {
     pool() = std::make_unique<EvaluationPool>(options_.threads, config,
                                               options_.null_evaluation);
@@ -284,11 +294,62 @@ void Worker::Session::Send(const v1::Envelope& envelope) {
   const std::string bytes = protocol::Encode(envelope);
   const zmq::send_result_t sent =
       socket_.send(zmq::buffer(bytes), zmq::send_flags::dontwait);
-  if (!sent) {
+  if (!sent && !send_failed_) {
+    // Once a session: without a connection every heartbeat would fail.
+    send_failed_ = true;
     options_.log(std::string("could not send ") + protocol::BodyName(envelope) +
-                 " (no connection)");
+                 " (no connection to " + options_.endpoint +
+                 " yet; said once a session)");
   }
   last_sent_ = Steady::now();
+}
+
+void Worker::Session::ReadHandshakes() {
+  using Kind = protocol::HandshakeEvent::Kind;
+  for (const protocol::HandshakeEvent& event : handshakes_.Read()) {
+    std::string& said = worker_.handshake_problem_;
+    if (event.kind == Kind::kSucceeded) {
+      said.clear();
+    } else if (event.kind == Kind::kFailed) {
+      // No detail: often the echo of a refusal the master made first
+      // (its side of a mismatch). Said when the session ends, if nothing
+      // more precise was (Lost).
+      unexplained_ = HandshakeProblem(event);
+    } else if (const std::string problem = HandshakeProblem(event);
+               problem != said) {
+      options_.log(problem);
+      said = problem;
+    }
+  }
+}
+
+std::string Worker::Session::HandshakeProblem(
+    const protocol::HandshakeEvent& event) const {
+  using Kind = protocol::HandshakeEvent::Kind;
+  const bool curve = !options_.curve_server_key.empty();
+  const std::string master = "the master at " + options_.endpoint;
+  switch (event.kind) {
+    case Kind::kSucceeded:
+      return "";
+    case Kind::kRefusedKey:
+      return master + " refused this worker's key " +
+             options_.curve_public_key + " (CurveZMQ authentication, status " +
+             std::to_string(event.code) +
+             "): it must be on the master's allow-list (--curve-allow)";
+    case Kind::kMechanismMismatch:
+      return curve ? master +
+                         " does not use CurveZMQ: start it with --curve-secret "
+                         "and --curve-allow, or this worker without keys"
+                   : master +
+                         " requires CurveZMQ and refused this worker, which "
+                         "has no keys: give it --curve-server (the master's "
+                         "public key) and --curve-secret (docs/security.md)";
+    default:
+      return curve ? "the CurveZMQ handshake with " + master +
+                         " failed: is --curve-server the master's public key?"
+                   : "the handshake with " + master + " failed (ZeroMQ error " +
+                         std::to_string(event.code) + ")";
+  }
 }
 
 void Worker::Session::SendCredit(int credit) {
@@ -301,7 +362,8 @@ void Worker::Session::SendCredit(int credit) {
 Worker::SessionEnd Worker::Session::RunOver(const v1::Goodbye& goodbye) {
   // Nothing it holds is of use any more: the work not started, the
   // results not sent or not acknowledged.
-  options_.log("the master's run is over (" + goodbye.reason() + ")");
+  options_.log("the master's run is over (" +
+               ForeignText(goodbye.reason(), protocol::kMaxReasonBytes) + ")");
   if (pool()) pool()->Abandon();
   worker_.unsent_.clear();
   worker_.unacknowledged_.clear();
@@ -309,6 +371,10 @@ Worker::SessionEnd Worker::Session::RunOver(const v1::Goodbye& goodbye) {
 }
 
 Worker::SessionEnd Worker::Session::Lost() {
+  if (!unexplained_.empty() && worker_.handshake_problem_.empty()) {
+    options_.log(unexplained_);
+    worker_.handshake_problem_ = unexplained_;
+  }
   if (stopping_) return SessionEnd::kStopped;
   if (pool()) pool()->Abandon();  // The next master re-sends what it needs.
   return welcomed_ ? SessionEnd::kLostAfterWelcome : SessionEnd::kLost;

@@ -18,6 +18,7 @@
 #include <zmq.hpp>
 
 #include "animat/v1/protocol.pb.h"
+#include "common/protocol/handshake_monitor.h"
 #include "worker/evaluation_pool.h"
 #include "worker/worker.h"
 
@@ -40,6 +41,7 @@ class Worker::Session {
   struct Events {
     bool master = false;
     bool pool = false;
+    bool handshake = false;
   };
 
   void SayHello();
@@ -62,6 +64,9 @@ class Worker::Session {
   // Remembers a result sent until the master acknowledges it.
   void KeepUnacknowledged(const v1::WorkResult& result);
   void Send(const v1::Envelope& envelope);
+  // Logs how handshakes with the master failed (CurveZMQ refusals).
+  void ReadHandshakes();
+  std::string HandshakeProblem(const protocol::HandshakeEvent& event) const;
   void SendCredit(int credit);
   // The master's goodbye: its run is over.
   SessionEnd RunOver(const v1::Goodbye& goodbye);
@@ -73,6 +78,7 @@ class Worker::Session {
   Worker& worker_;
   const WorkerOptions& options_;
   zmq::socket_t socket_;
+  protocol::HandshakeMonitor handshakes_;  // Of socket_.
   Steady::time_point last_heard_;
   Steady::time_point last_sent_;
   int heartbeat_ms_;
@@ -82,6 +88,10 @@ class Worker::Session {
   std::vector<uint64_t> returned_;  // Handed back, for the goodbye.
   int uncredited_ = 0;  // Results finished before this session's welcome.
   bool warned_unacknowledged_ = false;
+  bool send_failed_ = false;  // A failed send was logged (once a session).
+  // A handshake failure without detail, said if the session is lost and
+  // nothing more precise was said.
+  std::string unexplained_;
 };
 
 }  // namespace animat

@@ -116,6 +116,10 @@ class Worker {
   // kMaxUnacknowledged (a master that never acknowledges is not followed
   // further; logged).
   std::map<uint64_t, v1::WorkResult> unacknowledged_;
+  // The last handshake failure logged (a sentence; "" after a handshake
+  // succeeded), so a failure that repeats at every reconnection is said
+  // once.
+  std::string handshake_problem_;
 };
 
 }  // namespace animat

@@ -243,6 +243,8 @@ const char* EvalStatusName(EvalStatus status) {
       return "invalid_genome";
     case EvalStatus::kNotEvaluated:
       return "not_evaluated";
+    case EvalStatus::kCrashed:
+      return "crashed";
   }
   return "?";
 }

@@ -31,12 +31,15 @@ enum class EvalStatus {
   kNumericalFailure,  // A non-finite or runaway value.
   kInvalidGenome,     // The genome failed ValidateGenome.
   // Nothing was simulated (never returned by Evaluate): a null-evaluation
-  // worker, or a dispatcher that gave up on the individual.
+  // worker.
   kNotEvaluated,
+  // The evaluation crashed its process, alone too (never returned by
+  // Evaluate: the master records it).
+  kCrashed,
 };
 
 // "ok", "non_viable", "late_division", "too_few_cells", "degenerate_body",
-// "numerical_failure", "invalid_genome", "not_evaluated".
+// "numerical_failure", "invalid_genome", "not_evaluated", "crashed".
 const char* EvalStatusName(EvalStatus status);
 
 struct EvaluationResult {

@@ -1,10 +1,12 @@
 #include "common/protocol/protocol.h"
 
-#include "common/kernels/isa.h"
+#include <google/protobuf/io/coded_stream.h>
+#include <google/protobuf/wire_format_lite.h>
 
 #include <cmath>
 #include <utility>
 
+#include "common/kernels/isa.h"
 #include "common/protocol/build_info.h"
 
 namespace animat::protocol {
@@ -27,11 +29,57 @@ std::string Encode(v1::Envelope envelope) {
   return envelope.SerializeAsString();
 }
 
+namespace {
+
+// What a frame says about itself before it is parsed: a walk over its
+// top-level fields that skips their contents (a length-delimited field
+// costs its length's bytes, not its payload's).
+struct FrameHead {
+  v1::Envelope::BodyCase body = v1::Envelope::BODY_NOT_SET;
+};
+
+bool ReadHead(std::string_view frame, FrameHead* head) {
+  using google::protobuf::internal::WireFormatLite;
+  google::protobuf::io::CodedInputStream in(
+      reinterpret_cast<const uint8_t*>(frame.data()),
+      static_cast<int>(frame.size()));
+  while (const uint32_t tag = in.ReadTag()) {
+    const int field = WireFormatLite::GetTagFieldNumber(tag);
+    // The body's fields are numbered 10 (hello) to 18 (acknowledge).
+    if (WireFormatLite::GetTagWireType(tag) ==
+            WireFormatLite::WIRETYPE_LENGTH_DELIMITED &&
+        field >= v1::Envelope::kHelloFieldNumber &&
+        field <= v1::Envelope::kAcknowledgeFieldNumber) {
+      head->body = static_cast<v1::Envelope::BodyCase>(field);
+    }
+    if (!WireFormatLite::SkipField(&in, tag)) return false;
+  }
+  return in.ConsumedEntireMessage();
+}
+
+}  // namespace
+
 Result<v1::Envelope> Decode(std::string_view frame) {
-  v1::Envelope envelope;
-  if (!envelope.ParseFromArray(frame.data(), static_cast<int>(frame.size()))) {
+  const auto not_envelope = [&] {
     return Status::InvalidArgument("not an animat.v1.Envelope (" +
                                    std::to_string(frame.size()) + " bytes)");
+  };
+  FrameHead head;
+  if (frame.size() > static_cast<size_t>(kMaxMessageBytes) ||
+      !ReadHead(frame, &head)) {
+    return not_envelope();
+  }
+  // Refused before it is parsed: a frame larger than its body may take.
+  const size_t limit = MaxEnvelopeBytes(head.body);
+  if (frame.size() > limit) {
+    return Status::InvalidArgument(std::string("a ") + BodyName(head.body) +
+                                   " of " + std::to_string(frame.size()) +
+                                   " bytes, above the limit of " +
+                                   std::to_string(limit));
+  }
+  v1::Envelope envelope;
+  if (!envelope.ParseFromArray(frame.data(), static_cast<int>(frame.size()))) {
+    return not_envelope();
   }
   // A hello and a refuse of another version still decode: they carry what
   // the other side needs to refuse, or to know it was refused.
@@ -44,55 +92,17 @@ Result<v1::Envelope> Decode(std::string_view frame) {
   if (envelope.body_case() == v1::Envelope::BODY_NOT_SET) {
     return Status::InvalidArgument("envelope without a body");
   }
+  Status status = CheckEnvelope(envelope);
+  if (!status.ok()) return status;
   return envelope;
 }
 
-Status ValidateResult(const v1::EvaluationResult& r) {
-  if (!v1::EvaluationResult::Status_IsValid(r.status()) ||
-      r.status() == v1::EvaluationResult::STATUS_UNSPECIFIED) {
-    return Status::InvalidArgument("unknown status " +
-                                   std::to_string(r.status()));
-  }
-  const bool ok = r.status() == v1::EvaluationResult::OK;
-  if (ok != r.has_fitness()) {
-    return Status::InvalidArgument(ok ? "status OK without a fitness"
-                                      : "a fitness without status OK");
-  }
-  if (ok && !(std::isfinite(r.fitness()) && r.fitness() >= 0.0)) {
-    return Status::InvalidArgument("fitness " + std::to_string(r.fitness()));
-  }
-  if (r.has_body()) {
-    const v1::BodySummary& b = r.body();
-    const std::pair<const char*, int32_t> counts[] = {
-        {"cells", b.cells()},
-        {"springs", b.springs()},
-        {"chambers", b.chambers()},
-        {"skin_edges", b.skin_edges()}};
-    for (const auto& [name, count] : counts) {
-      if (count < 0) {
-        return Status::InvalidArgument(std::string("body ") + name + " " +
-                                       std::to_string(count));
-      }
-    }
-    const std::pair<const char*, double> spreads[] = {
-        {"spread_major", b.spread_major()}, {"spread_minor", b.spread_minor()}};
-    for (const auto& [name, spread] : spreads) {
-      if (!(std::isfinite(spread) && spread >= 0.0)) {
-        return Status::InvalidArgument(std::string("body ") + name + " " +
-                                       std::to_string(spread));
-      }
-    }
-    if (b.spread_minor() > b.spread_major()) {
-      return Status::InvalidArgument(
-          "body spread_minor " + std::to_string(b.spread_minor()) +
-          " above spread_major " + std::to_string(b.spread_major()));
-    }
-  }
-  return Status::Ok();
+const char* BodyName(const v1::Envelope& envelope) {
+  return BodyName(envelope.body_case());
 }
 
-const char* BodyName(const v1::Envelope& envelope) {
-  switch (envelope.body_case()) {
+const char* BodyName(v1::Envelope::BodyCase body) {
+  switch (body) {
     case v1::Envelope::kHello:
       return "hello";
     case v1::Envelope::kWelcome:

@@ -4,8 +4,10 @@
 #include <cmath>
 #include <zmq.hpp>
 
+#include "common/base/text.h"
 #include "common/protocol/zmq_poll.h"
 #include "common/security/curve_keys.h"
+#include "master/dispatch/handshake_log.h"
 #include "master/dispatch/zap_authenticator.h"
 
 namespace animat {
@@ -23,6 +25,17 @@ int CreditCap(int threads) {
 }  // namespace
 
 Status Dispatcher::CheckOptions(const DispatcherOptions& options) {
+  if (options.heartbeat_ms < protocol::kMinHeartbeatMs ||
+      options.heartbeat_ms > protocol::kMaxHeartbeatMs) {
+    return Status::InvalidArgument(
+        "heartbeat of " + std::to_string(options.heartbeat_ms) +
+        " ms outside [" + std::to_string(protocol::kMinHeartbeatMs) + ", " +
+        std::to_string(protocol::kMaxHeartbeatMs) + "]");
+  }
+  if (options.lease_ms < 1) {
+    return Status::InvalidArgument("lease of " +
+                                   std::to_string(options.lease_ms) + " ms");
+  }
   const bool curve = !options.curve_secret_key.empty();
   if (!curve && !options.insecure &&
       !security::IsLocalEndpoint(options.endpoint)) {
@@ -68,6 +81,7 @@ Result<std::unique_ptr<Dispatcher>> Dispatcher::Create(
     dispatcher->socket_->bind(dispatcher->options_.endpoint);
     dispatcher->endpoint_ =
         dispatcher->socket_->get(zmq::sockopt::last_endpoint);
+    dispatcher->handshakes_->set_endpoint(dispatcher->endpoint_);
   } catch (const zmq::error_t& e) {
     return Status::IoError("cannot bind " + dispatcher->options_.endpoint +
                            ": " + e.what());
@@ -92,9 +106,13 @@ Dispatcher::Dispatcher(zmq::context_t* context, DispatcherOptions options,
       socket_(
           std::make_unique<zmq::socket_t>(*context, zmq::socket_type::router)) {
   socket_->set(zmq::sockopt::linger, 0);
-  socket_->set(zmq::sockopt::maxmsgsize, protocol::kMaxMessageBytes);
+  // The most a worker sends: ZeroMQ drops a connection that sends more.
+  socket_->set(zmq::sockopt::maxmsgsize, protocol::kMaxWorkerMessageBytes);
   // Sending to a vanished worker fails at once instead of queueing.
   socket_->set(zmq::sockopt::router_mandatory, 1);
+  handshakes_ = std::make_unique<HandshakeLog>(
+      *context, *socket_, !options_.curve_secret_key.empty(), options_.log,
+      *options_.clock);
 }
 
 Dispatcher::~Dispatcher() = default;
@@ -125,9 +143,12 @@ std::vector<Completion> Dispatcher::Poll(int timeout_ms) {
         end - options_.clock->Now());
     const long wait = std::clamp<long>(left.count(), 0,
                                        std::max(1, options_.heartbeat_ms / 4));
-    zmq::pollitem_t item = {static_cast<void*>(*socket_), 0, ZMQ_POLLIN, 0};
-    protocol::Poll(&item, 1, std::chrono::milliseconds(wait));
-    if (item.revents & ZMQ_POLLIN) Receive(&done);
+    zmq::pollitem_t items[] = {{static_cast<void*>(*socket_), 0, ZMQ_POLLIN, 0},
+                               {handshakes_->handle(), 0, ZMQ_POLLIN, 0}};
+    protocol::Poll(items, items[1].socket != nullptr ? 2 : 1,
+                   std::chrono::milliseconds(wait));
+    if (items[0].revents & ZMQ_POLLIN) Receive(&done);
+    if (items[1].revents & ZMQ_POLLIN) handshakes_->Read();
     Housekeep(&done);
     if (!done.empty() || options_.clock->Now() >= end) break;
   }
@@ -208,14 +229,14 @@ void Dispatcher::Handle(const std::string& identity,
       for (uint64_t id : envelope.goodbye().returned()) {
         if (worker.leased.count(id) != 0) {
           Unlease(id);
-          Requeue(id, /*counts_as_attempt=*/false, done);
+          Requeue(id, /*counts_as_attempt=*/false);
           ++returned;
         }
       }
       options_.log(worker.name + " said goodbye (" +
-                   envelope.goodbye().reason() + "), handing back " +
-                   std::to_string(returned));
-      DropWorker(identity, /*died=*/false, done);
+                   ForeignText(envelope.goodbye().reason(), 100) +
+                   "), handing back " + std::to_string(returned));
+      DropWorker(identity, /*died=*/false);
       break;
     }
     default:
@@ -225,29 +246,37 @@ void Dispatcher::Handle(const std::string& identity,
   }
 }
 
-void Dispatcher::Greet(const std::string& identity, const v1::Hello& hello,
-                       uint32_t envelope_version) {
-  const std::string name = hello.host() + ":" + std::to_string(hello.pid());
-  std::string refusal;
+std::string Dispatcher::Refusal(const v1::Hello& hello,
+                                uint32_t envelope_version) const {
   if (envelope_version != protocol::kVersion ||
       hello.protocol_version() != protocol::kVersion) {
     const uint32_t theirs = envelope_version != protocol::kVersion
                                 ? envelope_version
                                 : hello.protocol_version();
-    refusal = "protocol version " + std::to_string(theirs) +
-              " differs from the master's " +
-              std::to_string(protocol::kVersion);
-  } else if (hello.build_id() != protocol::BuildId()) {
-    refusal = "build \"" + hello.build_id() +
-              "\" differs from the master's \"" + protocol::BuildId() +
-              "\" (different builds can give different "
-              "bits)";
-  } else if (hello.null_evaluation() && !options_.accept_null_workers) {
-    refusal = "null-evaluation workers are not accepted by this master";
+    return "protocol version " + std::to_string(theirs) +
+           " differs from the master's " + std::to_string(protocol::kVersion);
   }
+  if (hello.build_id() != protocol::BuildId()) {
+    return "build \"" + ForeignText(hello.build_id(), 100) +
+           "\" differs from the master's \"" + protocol::BuildId() +
+           "\" (different builds can give different bits)";
+  }
+  if (hello.null_evaluation() && !options_.accept_null_workers) {
+    return "null-evaluation workers are not accepted by this master";
+  }
+  return "";
+}
+
+void Dispatcher::Greet(const std::string& identity, const v1::Hello& hello,
+                       uint32_t envelope_version) {
+  // The peer's host, escaped and cut short: it reaches every log line
+  // about this worker.
+  const std::string name =
+      ForeignText(hello.host(), 64) + ":" + std::to_string(hello.pid());
+  const std::string refusal = Refusal(hello, envelope_version);
   if (!refusal.empty()) {
     if (workers_.count(identity) != 0) {
-      DropWorker(identity, /*died=*/false, nullptr);
+      DropWorker(identity, /*died=*/false);
     }
     options_.log("refused worker " + name + ": " + refusal);
     ++stats_.refused;
@@ -258,7 +287,7 @@ void Dispatcher::Greet(const std::string& identity, const v1::Hello& hello,
   }
   if (workers_.count(identity) != 0) {
     // A second hello on one connection: start the session afresh.
-    DropWorker(identity, /*died=*/false, nullptr);
+    DropWorker(identity, /*died=*/false);
   }
   if (hello.instance() != 0) {
     // The same worker process on a new connection: it took the master for
@@ -274,15 +303,14 @@ void Dispatcher::Greet(const std::string& identity, const v1::Hello& hello,
       options_.log("worker " + name + " reconnected; " +
                    std::to_string(workers_.at(other).leased.size()) +
                    " leases of its old session back in the queue");
-      DropWorker(other, /*died=*/false, nullptr);
+      DropWorker(other, /*died=*/false);
     }
   }
   WorkerState& worker = workers_[identity];
   ever_joined_ = true;
   worker.name = name;
   worker.instance = hello.instance();
-  worker.threads = static_cast<int>(
-      std::clamp<uint32_t>(hello.threads(), 1, protocol::kMaxThreads));
+  worker.threads = static_cast<int>(hello.threads());  // Checked by Decode.
   worker.null_evaluation = hello.null_evaluation();
   worker.last_heard = options_.clock->Now();
   strangers_.erase(identity);
@@ -327,12 +355,7 @@ void Dispatcher::Collect(const std::string& identity, WorkerState& worker,
       forget->add_individuals(r.individual());
       continue;
     }
-    Status valid = protocol::ValidateResult(r.result());
-    if (valid.ok() &&
-        !(std::isfinite(r.wall_seconds()) && r.wall_seconds() >= 0.0)) {
-      valid = Status::InvalidArgument("wall time " +
-                                      std::to_string(r.wall_seconds()));
-    }
+    const Status valid = protocol::CheckWorkResult(r);
     if (!valid.ok()) {
       Ignore("an invalid result for individual " +
              std::to_string(r.individual()) + " from " + worker.name + ": " +
@@ -342,19 +365,13 @@ void Dispatcher::Collect(const std::string& identity, WorkerState& worker,
     }
     if (entry.leased) {
       Unlease(r.individual());
+    } else if (entry.isolated) {
+      options_.isolation->Cancel(r.individual());  // No longer needed.
     } else {
       Unqueue(r.individual());
     }
-    Completion completion;
-    completion.individual = r.individual();
-    completion.result = r.result();
-    completion.worker = worker.name;
-    completion.wall_seconds = r.wall_seconds();
-    completion.attempts = entry.attempts;
-    completion.null_evaluation = worker.null_evaluation;
-    done->push_back(std::move(completion));
-    pending_.erase(it);
-    ++stats_.completed;
+    Complete(r.individual(), r.result(), worker.name, r.wall_seconds(),
+             worker.null_evaluation, done);
     if (options_.acknowledge_on_receipt) {
       forget->add_individuals(r.individual());
     } else {
@@ -365,18 +382,25 @@ void Dispatcher::Collect(const std::string& identity, WorkerState& worker,
 }
 
 void Dispatcher::Acknowledge(const std::vector<uint64_t>& individuals) {
-  // One message per worker, in identity order.
-  std::map<std::string, v1::Envelope> messages;
+  // Per worker, in identity order, messages of up to kMaxAcknowledged.
+  std::map<std::string, std::vector<uint64_t>> ids;
   for (uint64_t id : individuals) {
     const auto it = delivered_.find(id);
     if (it == delivered_.end()) continue;
-    if (workers_.count(it->second) != 0) {
-      messages[it->second].mutable_acknowledge()->add_individuals(id);
-    }
+    if (workers_.count(it->second) != 0) ids[it->second].push_back(id);
     delivered_.erase(it);
   }
-  for (auto& [identity, envelope] : messages) {
-    Send(identity, std::move(envelope));
+  for (const auto& [identity, list] : ids) {
+    for (size_t begin = 0; begin < list.size();
+         begin += protocol::kMaxAcknowledged) {
+      const size_t end = std::min(
+          list.size(), begin + static_cast<size_t>(protocol::kMaxAcknowledged));
+      v1::Envelope envelope;
+      for (size_t i = begin; i < end; ++i) {
+        envelope.mutable_acknowledge()->add_individuals(list[i]);
+      }
+      Send(identity, std::move(envelope));
+    }
   }
 }
 
@@ -459,12 +483,13 @@ bool Dispatcher::SendWork(const std::string& identity, WorkerState& worker,
   for (auto id = items.rbegin(); id != items.rend(); ++id) {
     Unlease(*id);
     ++worker.credit;
-    Requeue(*id, /*counts_as_attempt=*/false, nullptr);
+    Requeue(*id, /*counts_as_attempt=*/false);
   }
   return false;
 }
 
 void Dispatcher::Housekeep(std::vector<Completion>* done) {
+  CollectIsolated(done);
   const TimePoint now = options_.clock->Now();
   NoticeIdle(now);
   const auto silent_limit =
@@ -488,7 +513,7 @@ void Dispatcher::Housekeep(std::vector<Completion>* done) {
                  std::to_string(silent_limit.count()) + " ms; " +
                  std::to_string(worker.leased.size()) +
                  " leases back in the queue");
-    DropWorker(identity, /*died=*/true, done);
+    DropWorker(identity, /*died=*/true);
   }
   // Expired leases (their worker may still answer: the first result wins).
   // Records of leases that already ended are dropped on the way.
@@ -509,7 +534,7 @@ void Dispatcher::Housekeep(std::vector<Completion>* done) {
                    holder->second.name + " expired");
     }
     Unlease(id);
-    Requeue(id, /*counts_as_attempt=*/true, done);
+    Requeue(id, /*counts_as_attempt=*/true);
   }
 }
 
@@ -541,33 +566,103 @@ void Dispatcher::Farewell(const std::string& reason) {
   socket_->set(zmq::sockopt::linger, 1000);
 }
 
-void Dispatcher::Requeue(uint64_t individual, bool counts_as_attempt,
-                         std::vector<Completion>* done) {
+void Dispatcher::Requeue(uint64_t individual, bool counts_as_attempt) {
   Individual& entry = pending_.at(individual);
   entry.leased = false;
   entry.worker.clear();
   ++stats_.requeued;
-  if (counts_as_attempt) ++entry.attempts;
-  if (entry.attempts >= protocol::kMaxAttempts && done != nullptr) {
-    Completion completion;
-    completion.individual = individual;
-    completion.result.set_status(v1::EvaluationResult::NOT_EVALUATED);
-    completion.result.set_reason(
-        "gave up after " + std::to_string(entry.attempts) +
-        " attempts: each time the worker died or the lease expired");
-    completion.attempts = entry.attempts;
-    options_.log("gave up on individual " + std::to_string(individual) +
-                 " after " + std::to_string(entry.attempts) + " attempts");
-    done->push_back(std::move(completion));
-    pending_.erase(individual);
-    ++stats_.gave_up;
-    return;
-  }
-  if (entry.attempts > 0) {
+  if (counts_as_attempt && ++entry.attempts >= protocol::kMaxAttempts) {
+    Isolate(individual);
+  } else if (entry.attempts > 0) {
     suspects_.insert({-entry.attempts, individual});
   } else {
     queue_.push_front(individual);  // Handed back: next in line.
   }
+}
+
+void Dispatcher::Isolate(uint64_t individual) {
+  Individual& entry = pending_.at(individual);
+  const std::string ended = "individual " + std::to_string(individual) + ": " +
+                            std::to_string(entry.attempts) +
+                            " leases ended without a result";
+  if (options_.isolation == nullptr) {
+    options_.log(ended + "; retried on workers (no isolation here)");
+  } else {
+    const Status started = options_.isolation->Start(individual, entry.item,
+                                                     config_, config_hash_);
+    if (started.ok()) {
+      entry.isolated = true;
+      ++stats_.isolated;
+      options_.log(ended +
+                   " (each time its worker vanished or the lease "
+                   "expired); evaluating it alone in a child process");
+      return;
+    }
+    options_.log(ended + "; it cannot be evaluated alone (" +
+                 started.message() + "), so it is retried on workers");
+  }
+  suspects_.insert({-entry.attempts, individual});
+}
+
+void Dispatcher::CollectIsolated(std::vector<Completion>* done) {
+  if (options_.isolation == nullptr) return;
+  for (IsolatedOutcome& outcome : options_.isolation->Finished()) {
+    const uint64_t id = outcome.individual;
+    const auto it = pending_.find(id);
+    if (it == pending_.end() || !it->second.isolated) continue;
+    Individual& entry = it->second;
+    entry.isolated = false;
+    const std::string which = "individual " + std::to_string(id);
+    if (outcome.kind == IsolatedOutcome::Kind::kResult) {
+      Status valid = protocol::CheckWorkResult(outcome.result);
+      if (valid.ok() && (outcome.result.individual() != id ||
+                         outcome.result.genome_hash() != entry.genome_hash)) {
+        valid = Status::InvalidArgument("a result for another individual");
+      }
+      if (valid.ok()) {
+        options_.log(which + " evaluated alone: " +
+                     v1::EvaluationResult::Status_Name(
+                         outcome.result.result().status()));
+        Complete(id, std::move(*outcome.result.mutable_result()),
+                 std::move(outcome.evaluator), outcome.result.wall_seconds(),
+                 /*null_evaluation=*/false, done);
+        continue;
+      }
+      outcome.how = "an invalid result: " + valid.message();
+    } else if (outcome.kind == IsolatedOutcome::Kind::kCrashed) {
+      v1::EvaluationResult crashed;
+      crashed.set_status(v1::EvaluationResult::CRASHED);
+      crashed.set_reason("the evaluation crashed (" + outcome.how +
+                         ") alone in a child process, after " +
+                         std::to_string(entry.attempts) +
+                         " leases on workers ended without a result");
+      options_.log(which + " crashed alone too (" + outcome.how +
+                   "): recorded as crashed");
+      ++stats_.crashed;
+      Complete(id, std::move(crashed), std::move(outcome.evaluator), 0.0,
+               /*null_evaluation=*/false, done);
+      continue;
+    }
+    options_.log("the evaluation of " + which + " alone decided nothing (" +
+                 outcome.how + "); it is retried on workers");
+    suspects_.insert({-entry.attempts, id});
+  }
+}
+
+void Dispatcher::Complete(uint64_t individual, v1::EvaluationResult result,
+                          std::string evaluator, double wall_seconds,
+                          bool null_evaluation, std::vector<Completion>* done) {
+  const auto it = pending_.find(individual);
+  Completion completion;
+  completion.individual = individual;
+  completion.result = std::move(result);
+  completion.worker = std::move(evaluator);
+  completion.wall_seconds = wall_seconds;
+  completion.attempts = it->second.attempts;
+  completion.null_evaluation = null_evaluation;
+  done->push_back(std::move(completion));
+  pending_.erase(it);
+  ++stats_.completed;
 }
 
 void Dispatcher::Unlease(uint64_t individual) {
@@ -589,8 +684,7 @@ void Dispatcher::Unqueue(uint64_t individual) {
   if (it != queue_.end()) queue_.erase(it);
 }
 
-void Dispatcher::DropWorker(const std::string& identity, bool died,
-                            std::vector<Completion>* done) {
+void Dispatcher::DropWorker(const std::string& identity, bool died) {
   const auto it = workers_.find(identity);
   if (it == workers_.end()) return;
   const std::set<uint64_t> leased = std::move(it->second.leased);
@@ -598,7 +692,7 @@ void Dispatcher::DropWorker(const std::string& identity, bool died,
   if (workers_.empty()) idle_since_ = options_.clock->Now();
   // Highest first, so the queue front ends up in increasing order.
   for (auto id = leased.rbegin(); id != leased.rend(); ++id) {
-    if (pending_.count(*id) != 0) Requeue(*id, died, done);
+    if (pending_.count(*id) != 0) Requeue(*id, died);
   }
 }
 

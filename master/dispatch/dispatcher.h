@@ -4,12 +4,14 @@
 // Work is leased: a worker silent for kLiveness heartbeat intervals, or a
 // lease older than lease_ms, puts its individuals back in the queue.
 // Results are idempotent by individual: the first valid one counts, late
-// duplicates are ignored. An individual whose evaluation ended without a
-// result kMaxAttempts times (its worker died or its lease expired) is
-// completed as NOT_EVALUATED with the reason; individuals that were on a
-// dying worker are retried alone, so one genome that kills workers does not
-// take others down with it. Malformed input of any kind is logged in one
-// line and survived.
+// duplicates are ignored. Individuals that were on a dying worker are
+// retried alone, so one genome that kills workers does not take others
+// down with it; one whose leases ended without a result kMaxAttempts times
+// is evaluated alone by the Isolation (isolation.h), and completed as
+// CRASHED only if that evaluation crashes too: a vanished worker is no
+// evidence against a genome, so faults never decide a result. Malformed
+// input of any kind is refused in one log line, peers' strings escaped
+// and cut short, and survived.
 //
 // The model configuration travels as the protocol's message (v1::Config,
 // made by ConfigToProto): the dispatcher never evaluates, so it does not
@@ -37,6 +39,7 @@
 #include "common/protocol/genome_wire.h"
 #include "common/protocol/protocol.h"
 #include "master/dispatch/evaluation_service.h"
+#include "master/dispatch/isolation.h"
 #include "master/dispatch/work_encoder.h"
 
 namespace zmq {
@@ -46,13 +49,19 @@ class socket_t;
 
 namespace animat {
 
+class HandshakeLog;
 class ZapAuthenticator;
 
 struct DispatcherOptions {
   std::string endpoint = "tcp://127.0.0.1:5555";  // Where to bind.
+  // In [kMinHeartbeatMs, kMaxHeartbeatMs].
   int heartbeat_ms = protocol::kHeartbeatMs;
-  // A lease not completed in this time goes back to the queue.
+  // A lease not completed in this time (>= 1) goes back to the queue.
   int lease_ms = 10 * 60 * 1000;
+  // Evaluates a suspect alone after kMaxAttempts leases ended without a
+  // result (not owned; it must outlive the dispatcher). Null: such a
+  // suspect is retried on workers for ever, one lease at a time.
+  Isolation* isolation = nullptr;
   // Accept workers in null-evaluation mode (dispatch benchmarks only).
   bool accept_null_workers = false;
   // CurveZMQ (docs/security.md): this master's secret key (Z85) and the
@@ -86,7 +95,8 @@ struct DispatcherOptions {
 struct DispatcherStats {
   int64_t dispatched = 0;  // Items sent (re-sends counted again).
   int64_t completed = 0;   // Individuals completed with a result.
-  int64_t gave_up = 0;     // Individuals completed as NOT_EVALUATED.
+  int64_t isolated = 0;    // Evaluations of a suspect alone started.
+  int64_t crashed = 0;     // Individuals completed as CRASHED.
   int64_t requeued = 0;    // Leases returned to the queue.
   int64_t ignored = 0;     // Messages or results ignored (logged).
   int64_t refused = 0;     // Workers refused.
@@ -166,7 +176,8 @@ class Dispatcher final : public EvaluationService {
     uint64_t lease = 0;  // Serial of its current lease.
     int attempts = 0;
     bool leased = false;
-    std::string worker;  // Identity, when leased.
+    bool isolated = false;  // Being evaluated alone (options_.isolation).
+    std::string worker;     // Identity, when leased.
     TimePoint deadline;
   };
 
@@ -178,6 +189,8 @@ class Dispatcher final : public EvaluationService {
               std::vector<Completion>* done);
   void Greet(const std::string& identity, const v1::Hello& hello,
              uint32_t envelope_version);
+  // Why a hello is refused ("" when it is not).
+  std::string Refusal(const v1::Hello& hello, uint32_t envelope_version) const;
   void Collect(const std::string& identity, WorkerState& worker,
                const v1::Results& results, std::vector<Completion>* done);
   void Dispatch();
@@ -191,11 +204,18 @@ class Dispatcher final : public EvaluationService {
   void Housekeep(std::vector<Completion>* done);
   // The idle notice, when it is due.
   void NoticeIdle(TimePoint now);
-  // Back to the queue after a lease ended without a result.
-  void Requeue(uint64_t individual, bool counts_as_attempt,
-               std::vector<Completion>* done);
-  void DropWorker(const std::string& identity, bool died,
-                  std::vector<Completion>* done);
+  // Back to the queue after a lease ended without a result; after
+  // kMaxAttempts counted, to the isolation instead.
+  void Requeue(uint64_t individual, bool counts_as_attempt);
+  void Isolate(uint64_t individual);
+  // The isolated evaluations that ended: completions, or suspects again.
+  void CollectIsolated(std::vector<Completion>* done);
+  // Completes a pending individual (no longer leased or queued) with
+  // `result`, evaluated by `evaluator`.
+  void Complete(uint64_t individual, v1::EvaluationResult result,
+                std::string evaluator, double wall_seconds,
+                bool null_evaluation, std::vector<Completion>* done);
+  void DropWorker(const std::string& identity, bool died);
   // True when the message was handed to the socket.
   bool Send(const std::string& identity, v1::Envelope envelope);
   // The same for an encoded envelope; `what` names its body for the log.
@@ -214,6 +234,8 @@ class Dispatcher final : public EvaluationService {
   // Declared before the socket: destroyed after it (ZAP outlives it).
   std::unique_ptr<ZapAuthenticator> zap_;
   std::unique_ptr<zmq::socket_t> socket_;
+  // Handshakes that fail on socket_ (destroyed before it).
+  std::unique_ptr<HandshakeLog> handshakes_;
   std::map<uint64_t, Individual> pending_;
   std::deque<uint64_t> queue_;  // Queued individuals, next first.
   // Queued after a failed attempt, by most attempts first (so failures

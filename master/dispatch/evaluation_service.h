@@ -23,7 +23,9 @@ namespace animat {
 struct Completion {
   uint64_t individual = 0;
   v1::EvaluationResult result;
-  std::string worker;       // "host:pid" of the worker that evaluated it.
+  // "host:pid" of the worker that evaluated it; "host:pid (isolated)" for
+  // a suspect evaluated alone (isolation.h).
+  std::string worker;
   double wall_seconds = 0;  // On the worker.
   int attempts = 0;         // Dispatches that ended without a result.
   // From a worker in null-evaluation mode (benchmarks only): the result is

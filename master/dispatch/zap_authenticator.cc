@@ -4,6 +4,7 @@
 #include <vector>
 #include <zmq.hpp>
 
+#include "common/base/text.h"
 #include "common/protocol/zmq_poll.h"
 #include "common/security/curve_keys.h"
 
@@ -69,32 +70,47 @@ void ZapAuthenticator::Serve(void* raw_socket) {
     // 1.0, request id, domain, address, routing id, mechanism, credentials.
     const std::string request_id = frames.size() > 1 ? frames[1] : "";
     if (frames.size() < 6 || frames[0] != "1.0") {
-      log_("ZAP: malformed request refused");
-      ++refused_;
+      Refused("malformed", "ZAP: malformed request refused");
       Reply(socket, request_id, "500", "malformed ZAP request", "");
       continue;
     }
-    const std::string& address = frames[3];
-    const std::string& mechanism = frames[5];
+    // Escaped: the mechanism's name comes from the peer.
+    const std::string address = ForeignText(frames[3], 64);
+    const std::string mechanism = ForeignText(frames[5], 20);
     if (mechanism != "CURVE" || frames.size() != 7 ||
         frames[6].size() != security::kKeyBytes) {
-      log_("refused a worker from " + address + ": mechanism " + mechanism +
-           ", not CurveZMQ");
-      ++refused_;
+      Refused(address + " " + mechanism, "refused a worker from " + address +
+                                             ": mechanism " + mechanism +
+                                             ", not CurveZMQ");
       Reply(socket, request_id, "400", "CurveZMQ required", "");
       continue;
     }
     const std::string key = security::Z85Encode(frames[6]);
     const auto it = allowed_.find(key);
     if (it == allowed_.end()) {
-      log_("refused a worker from " + address + ": key " + key +
-           " is not on the allow-list");
-      ++refused_;
+      Refused(address + " " + key, "refused a worker from " + address +
+                                       ": key " + key +
+                                       " is not on the allow-list (logged "
+                                       "once for this address and key)");
       Reply(socket, request_id, "400", "unknown key", "");
       continue;
     }
     ++admitted_;
     Reply(socket, request_id, "200", "OK", it->second);
+  }
+}
+
+void ZapAuthenticator::Refused(const std::string& peer,
+                               const std::string& line) {
+  ++refused_;
+  if (logged_.count(peer) != 0) return;
+  if (logged_.size() < kMaxPeersLogged) {
+    logged_.insert(peer);
+    log_(line);
+  } else if (logged_.size() == kMaxPeersLogged) {
+    logged_.insert("");  // Said once.
+    log_("refused " + std::to_string(kMaxPeersLogged) +
+         " different workers; further refusals are not logged");
   }
 }
 

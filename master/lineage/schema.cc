@@ -267,6 +267,30 @@ CREATE VIEW line_of_descent AS
   SELECT line.run_id, line.step, i.id, i.generation, i.operators, i.fitness
   FROM line JOIN individuals i ON i.run_id = line.run_id AND i.id = line.id;
 )sql",
+    // 4 -> 5: the configurations a run has had, from which generation each.
+    // runs holds only the one in force: a run resumed with --force (another
+    // configuration or build) or extended lost what it had run with before.
+    // A store written before keeps what its runs hold now, as in force from
+    // generation 0 (earlier changes, if any, were never recorded).
+    R"sql(
+CREATE TABLE run_configs (
+  run_id          INTEGER NOT NULL REFERENCES runs (run_id),
+  change          INTEGER NOT NULL,  -- 0: as started, then 1, 2, ...
+  from_generation INTEGER NOT NULL,  -- the first generation made under it
+  config          BLOB    NOT NULL,  -- animat.v1.RunConfig, binary protobuf
+  config_text     TEXT    NOT NULL,  -- the same in proto text format
+  config_hash     TEXT    NOT NULL,  -- 16 hex digits
+  build_id        TEXT    NOT NULL,  -- the simulator build that evaluates
+  recorded_at     TEXT    NOT NULL,  -- UTC, ISO 8601
+  reason          TEXT    NOT NULL,  -- 'started', or what changed and why
+  PRIMARY KEY (run_id, change)
+);
+INSERT INTO run_configs
+  SELECT run_id, 0, 0, config, config_text, config_hash, build_id,
+         started_at, 'in force when the store was upgraded to schema '
+                     || 'version 5; earlier changes were not recorded'
+  FROM runs ORDER BY run_id;
+)sql",
 };
 
 constexpr int kKnown = static_cast<int>(std::size(kMigrations));

@@ -149,19 +149,49 @@ Result<int64_t> Store::CreateRun(uint64_t seed, const v1::RunConfig& config,
                                  const std::string& build_id) {
   std::string text;
   google::protobuf::TextFormat::PrintToString(config, &text);
-  Result<sql::Statement> insert = db_->Cached(
-      "INSERT INTO runs (seed, config, config_text, config_hash, build_id,"
-      " started_at, state) VALUES (?, ?, ?, ?, ?, ?, 'running')");
-  if (!insert.ok()) return insert.status();
-  insert->Bind(1, static_cast<int64_t>(seed))
-      .BindBlob(2, config.SerializeAsString())
-      .Bind(3, text)
-      .Bind(4, Hex64(protocol::MessageHash(config)))
-      .Bind(5, build_id)
-      .Bind(6, UtcNow());
-  Status status = insert->Run();
+  const std::string now = UtcNow();
+  int64_t run = 0;
+  Status status = InTransaction(*db_, [&]() -> Status {
+    Result<sql::Statement> insert = db_->Cached(
+        "INSERT INTO runs (seed, config, config_text, config_hash, build_id,"
+        " started_at, state) VALUES (?, ?, ?, ?, ?, ?, 'running')");
+    if (!insert.ok()) return insert.status();
+    insert->Bind(1, static_cast<int64_t>(seed))
+        .BindBlob(2, config.SerializeAsString())
+        .Bind(3, text)
+        .Bind(4, Hex64(protocol::MessageHash(config)))
+        .Bind(5, build_id)
+        .Bind(6, now);
+    Status inserted = insert->Run();
+    if (!inserted.ok()) return inserted;
+    run = db_->last_insert_rowid();
+    return InsertConfigChange(run, 0, config, text, build_id, now, "started");
+  });
   if (!status.ok()) return status;
-  return db_->last_insert_rowid();
+  return run;
+}
+
+Status Store::InsertConfigChange(int64_t run, int from_generation,
+                                 const v1::RunConfig& config,
+                                 const std::string& text,
+                                 const std::string& build_id,
+                                 const std::string& now,
+                                 const std::string& reason) {
+  Result<sql::Statement> insert = db_->Cached(
+      "INSERT INTO run_configs (run_id, change, from_generation, config,"
+      " config_text, config_hash, build_id, recorded_at, reason)"
+      " SELECT ?1, COALESCE(MAX(change) + 1, 0), ?2, ?3, ?4, ?5, ?6, ?7, ?8"
+      " FROM run_configs WHERE run_id = ?1");
+  if (!insert.ok()) return insert.status();
+  insert->Bind(1, run)
+      .Bind(2, static_cast<int64_t>(from_generation))
+      .BindBlob(3, config.SerializeAsString())
+      .Bind(4, text)
+      .Bind(5, Hex64(protocol::MessageHash(config)))
+      .Bind(6, build_id)
+      .Bind(7, now)
+      .Bind(8, reason);
+  return insert->Run();
 }
 
 Result<std::vector<RunRow>> Store::Runs() {
@@ -199,22 +229,57 @@ Status Store::FinishRun(int64_t run) {
   return update->Run();
 }
 
-Status Store::UpdateRunConfig(int64_t run, const v1::RunConfig& config,
-                              const std::string& build_id) {
+Status Store::UpdateRunConfig(int64_t run, int from_generation,
+                              const v1::RunConfig& config,
+                              const std::string& build_id,
+                              const std::string& reason) {
   std::string text;
   google::protobuf::TextFormat::PrintToString(config, &text);
-  Result<sql::Statement> update = db_->Cached(
-      "UPDATE runs SET seed = ?, config = ?, config_text = ?,"
-      " config_hash = ?, build_id = ?, state = 'running', ended_at = NULL"
-      " WHERE run_id = ?");
-  if (!update.ok()) return update.status();
-  update->Bind(1, static_cast<int64_t>(config.evolution().seed()))
-      .BindBlob(2, config.SerializeAsString())
-      .Bind(3, text)
-      .Bind(4, Hex64(protocol::MessageHash(config)))
-      .Bind(5, build_id)
-      .Bind(6, run);
-  return update->Run();
+  return InTransaction(*db_, [&]() -> Status {
+    Result<sql::Statement> update = db_->Cached(
+        "UPDATE runs SET seed = ?, config = ?, config_text = ?,"
+        " config_hash = ?, build_id = ?, state = 'running', ended_at = NULL"
+        " WHERE run_id = ?");
+    if (!update.ok()) return update.status();
+    update->Bind(1, static_cast<int64_t>(config.evolution().seed()))
+        .BindBlob(2, config.SerializeAsString())
+        .Bind(3, text)
+        .Bind(4, Hex64(protocol::MessageHash(config)))
+        .Bind(5, build_id)
+        .Bind(6, run);
+    Status status = update->Run();
+    if (!status.ok()) return status;
+    return InsertConfigChange(run, from_generation, config, text, build_id,
+                              UtcNow(), reason);
+  });
+}
+
+Result<std::vector<RunConfigRow>> Store::ConfigHistory(int64_t run) {
+  Result<sql::Statement> select = db_->Cached(
+      "SELECT change, from_generation, config, config_hash, build_id,"
+      " recorded_at, reason FROM run_configs WHERE run_id = ?"
+      " ORDER BY change");
+  if (!select.ok()) return select.status();
+  select->Bind(1, run);
+  std::vector<RunConfigRow> history;
+  Status status = select->ForEachRow([&]() -> Status {
+    RunConfigRow row;
+    row.change = static_cast<int>(select->Int(0));
+    row.from_generation = static_cast<int>(select->Int(1));
+    if (!row.config.ParseFromString(select->Blob(2))) {
+      return Status::InvalidArgument(db_->path() + ": configuration " +
+                                     std::to_string(row.change) + " of run " +
+                                     std::to_string(run) + " is unreadable");
+    }
+    row.config_hash = select->Text(3);
+    row.build_id = select->Text(4);
+    row.recorded_at = select->Text(5);
+    row.reason = select->Text(6);
+    history.push_back(std::move(row));
+    return Status::Ok();
+  });
+  if (!status.ok()) return status;
+  return history;
 }
 
 Status Store::InsertIndividual(int64_t run, const NewIndividual& n,

@@ -39,6 +39,18 @@ struct RunRow {
   std::string state;     // "running" or "finished".
 };
 
+// One configuration a run has had (Store::ConfigHistory): what the run ran
+// with, and which build evaluated it, from `from_generation` on.
+struct RunConfigRow {
+  int change = 0;           // 0: as started; then 1, 2, ... in order.
+  int from_generation = 0;  // The first generation made under it.
+  v1::RunConfig config;
+  std::string config_hash;  // 16 hex digits.
+  std::string build_id;
+  std::string recorded_at;
+  std::string reason;  // "started", or what changed and why.
+};
+
 // An individual as made, before its evaluation.
 struct NewIndividual {
   uint64_t id = 0;
@@ -130,16 +142,23 @@ class Store {
   // store), for messages.
   const std::string& path() const { return db_->path(); }
 
-  // Runs.
+  // Runs. CreateRun also starts the run's configuration history.
   Result<int64_t> CreateRun(uint64_t seed, const v1::RunConfig& config,
                             const std::string& build_id);
   Result<std::vector<RunRow>> Runs();  // Oldest first.
   Status FinishRun(int64_t run);
-  // Replaces the run's configuration and the build that evaluates it (a
-  // run extended to more generations, or resumed with --force) and marks
-  // it running again.
-  Status UpdateRunConfig(int64_t run, const v1::RunConfig& config,
-                         const std::string& build_id);
+  // The run's configuration and the build that evaluates it from generation
+  // `from_generation` on (a run extended to more generations, or resumed
+  // with --force): the run's row shows them, its configuration history
+  // keeps them after the earlier ones with `reason`, and the run is marked
+  // running again; in one transaction.
+  Status UpdateRunConfig(int64_t run, int from_generation,
+                         const v1::RunConfig& config,
+                         const std::string& build_id,
+                         const std::string& reason);
+  // The configurations the run has had, oldest first: the one it started
+  // with, then each change (none for an unknown run).
+  Result<std::vector<RunConfigRow>> ConfigHistory(int64_t run);
 
   // Individuals. AddIndividuals writes all of them (and their parents) in
   // one transaction. RecordEvaluations writes a batch in one transaction;
@@ -197,6 +216,12 @@ class Store {
                           const std::string& now);
   Status InsertIndividuals(int64_t run,
                            const std::vector<NewIndividual>& batch);
+  // Appends to the run's configuration history.
+  Status InsertConfigChange(int64_t run, int from_generation,
+                            const v1::RunConfig& config,
+                            const std::string& text,
+                            const std::string& build_id, const std::string& now,
+                            const std::string& reason);
 
   std::unique_ptr<sql::Database> db_;
   int lock_fd_;  // flock()ed "<path>.lock", -1 for in-memory stores.

@@ -88,7 +88,8 @@ Result<std::unique_ptr<EvolutionRun>> EvolutionRun::Begin(lineage::Store* store,
     // The run's recorded configuration and build are what it now runs
     // with (so the next resume by this build needs no --force).
     Status status = store->UpdateRunConfig(
-        plan.run_id, RunSettingsToProto(plan.settings), protocol::BuildId());
+        plan.run_id, plan.generations_made, RunSettingsToProto(plan.settings),
+        protocol::BuildId(), ConfigChangeReason(plan));
     if (!status.ok()) return status;
   }
   log("resuming run " + std::to_string(plan.run_id));

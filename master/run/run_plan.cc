@@ -81,4 +81,15 @@ Result<RunPlan> PlanResume(lineage::Store* store,
   return plan;
 }
 
+std::string ConfigChangeReason(const RunPlan& plan) {
+  if (plan.forced.empty()) {
+    return "generations set to " +
+           std::to_string(plan.settings.evolution.generations);
+  }
+  std::string reason = "--force:";
+  for (const std::string& p : plan.forced) reason += " " + p + ";";
+  reason.pop_back();
+  return reason;
+}
+
 }  // namespace animat

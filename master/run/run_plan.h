@@ -29,6 +29,11 @@ struct RunPlan {
   std::vector<std::string> forced;  // What --force overrides, for the log.
 };
 
+// Why a plan with update_config changes the run's recorded configuration,
+// for its configuration history: "--force: WHAT IT OVERRIDES; ...", or
+// "generations set to N" (a run extended).
+std::string ConfigChangeReason(const RunPlan& plan);
+
 // A new run in `store`, which must hold none (kInvalidArgument otherwise,
 // saying so).
 Result<RunPlan> PlanStart(lineage::Store* store, const RunSettings& settings);

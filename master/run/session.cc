@@ -13,6 +13,7 @@
 #include "common/security/curve_keys.h"
 #include "master/dispatch/dispatcher.h"
 #include "master/lineage/store.h"
+#include "master/run/child_isolation.h"
 #include "master/run/local_workers.h"
 
 namespace animat {
@@ -225,6 +226,12 @@ Status RunSession(const SessionOptions& o) {
   // Bound before the run is written: a port in use leaves the store as it
   // was.
   zmq::context_t context(1);
+  // Suspects are evaluated alone by the animat-worker beside this program;
+  // it outlives the dispatcher.
+  Result<std::unique_ptr<ChildIsolation>> isolation = ChildIsolation::Create(
+      {{WorkerBesideThisProgram()}, listen->lease_ms, listen->clock});
+  if (!isolation.ok()) return isolation.status();
+  listen->isolation = isolation->get();
   Result<std::unique_ptr<Dispatcher>> dispatcher = Dispatcher::Create(
       &context, *listen, ConfigToProto(plan->settings.model));
   if (!dispatcher.ok()) return dispatcher.status();

@@ -88,6 +88,7 @@ TEST_F(DispatchTest, MasterSurvivesGarbageAndKeepsServingCorrectWork) {
   other_version.mutable_heartbeat();
   v1::Envelope welcome_from_worker;
   welcome_from_worker.mutable_welcome()->set_build_id("x");
+  welcome_from_worker.mutable_welcome()->set_heartbeat_ms(1000);
   v1::Envelope unknown_results;
   unknown_results.mutable_results()->add_results()->set_individual(999999);
   v1::Envelope huge_credit;
@@ -204,6 +205,10 @@ TEST_F(DispatchTest, MasterSurvivesGarbageAndKeepsServingCorrectWork) {
        {"ignored an invalid result for individual 1", "unknown status 99"}},
       {"a credit of 2^31",
        [&] { peer.Send(huge_credit); },
+       {"ignored a malformed message from " + name,
+        "credit.credit 2147483648 outside [1, 262144]"}},
+      {"credit beyond the worker's cap",
+       [&] { peer.Credit(5); },
        {"ignored credit beyond 4 from " + name}},
       {"random bytes from a stranger",
        [&] { send_from_stranger(RandomBytes(8, 100)); },
@@ -347,16 +352,17 @@ TEST_F(DispatchTest, RefusesAWorkerWhoseEnvelopesCarryAnotherVersion) {
 // Regression: Hello.threads is a uint32 taken as an int, and the credit cap
 // threads * kPrefetch * 2 overflows for threads >= 2^29 (undefined
 // behaviour: UBSan aborts the master; in an optimised build the cap wraps
-// to a negative number and the worker never gets any work). Run in a
-// child process so that a sanitizer abort does not take the other tests
-// down.
+// to a negative number and the worker never gets any work). Now a hello
+// beyond kMaxThreads is refused (limits_test.cc); one at the limit gets
+// work. Run in a child process so that a sanitizer abort does not take the
+// other tests down.
 TEST_F(DispatchTest, HelloClaimingHugeThreadCountDoesNotOverflowTheCreditCap) {
   GTEST_FLAG_SET(death_test_style, "threadsafe");
   const auto gets_work = [this]() -> int {
     if (!StartDispatcher(SimulatedOptions())) return 2;
     Submit(Population(MixedGenomes(1), 1));
     FakeWorker peer(context_, dispatcher_->endpoint(), clock_);
-    peer.Send(FakeHello(1 << 29, 6161));
+    peer.Send(FakeHello(protocol::kMaxThreads, 6161));
     if (!Serve([&] { return peer.welcomed(); }, kShortWait,
                [&] { peer.Pump(); })) {
       return 3;

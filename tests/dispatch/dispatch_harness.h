@@ -46,6 +46,7 @@
 #include "common/protocol/genome_wire.h"
 #include "common/protocol/protocol.h"
 #include "master/dispatch/dispatcher.h"
+#include "master/run/child_isolation.h"
 #include "tests/dispatch/fake_peers.h"
 #include "tests/dispatch/worker_process.h"
 #include "tests/test_util.h"
@@ -285,6 +286,26 @@ class DispatchTest : public ::testing::Test {
     return dispatcher_ != nullptr && &dispatcher_->clock() == &clock_;
   }
 
+  // `options` with an Isolation (isolation_) that runs `command` (by
+  // default the animat-worker of ANIMAT_BIN_DIR) on the options' clock,
+  // with a time limit of kLongWait (leases in tests are short, and a
+  // child on a loaded machine slow).
+  DispatcherOptions WithIsolation(DispatcherOptions options,
+                                  std::vector<std::string> command = {
+                                      std::string(ANIMAT_BIN_DIR) +
+                                      "/animat-worker"}) {
+    Result<std::unique_ptr<ChildIsolation>> isolation = ChildIsolation::Create(
+        {std::move(command), static_cast<int>(kLongWait.count()),
+         options.clock});
+    EXPECT_TRUE(isolation.ok()) << isolation.status().ToString();
+    if (isolation.ok()) isolation_ = std::move(isolation).value();
+    options.isolation = isolation_.get();
+    return options;
+  }
+  // A tick for Serve while an isolated evaluation runs: a real process,
+  // which simulated time does not hurry.
+  static void LetChildrenRun() { std::this_thread::sleep_for(milliseconds(1)); }
+
   // Binds a dispatcher for config_ (retrying while the address is still
   // held by a dispatcher just destroyed); false on failure.
   bool StartDispatcher(DispatcherOptions options) {
@@ -441,6 +462,7 @@ class DispatchTest : public ::testing::Test {
   ManualClock clock_;  // Simulated time (SimulatedOptions).
   ModelConfig config_;
   LogLines log_;
+  std::unique_ptr<ChildIsolation> isolation_;  // Outlives dispatcher_.
   std::unique_ptr<Dispatcher> dispatcher_;
   std::vector<Completion> completions_;
 };

@@ -2,9 +2,9 @@
 // animat-worker processes, workers killed, frozen, terminated, joining
 // late, and the master restarting; with workers played by the test, on
 // simulated time, leases expiring, silent workers dropped, heartbeats, and
-// a genome that kills its workers. Whatever happens, every individual
-// completes exactly once, with the bits of a direct evaluation of its
-// genome.
+// a genome whose workers die with it (then evaluated alone:
+// isolation_test.cc). Whatever happens, every individual completes
+// exactly once, with the bits of a direct evaluation of its genome.
 #include <algorithm>
 #include <csignal>
 #include <map>
@@ -54,7 +54,7 @@ TEST_F(DispatchTest, EveryIndividualCompletesOnceAsEvaluatedDirectly) {
   EXPECT_EQ(stats.completed, 40);
   EXPECT_EQ(stats.dispatched, 40);  // Nothing sent twice.
   EXPECT_EQ(stats.requeued, 0);
-  EXPECT_EQ(stats.gave_up, 0);
+  EXPECT_EQ(stats.isolated, 0);
   EXPECT_EQ(stats.ignored, 0);
   EXPECT_EQ(log_.Count({"joined"}), 2) << log_.Dump();
 }
@@ -90,7 +90,7 @@ TEST_F(DispatchTest, KilledWorkersLeasesAreEvaluatedElsewhereExactlyOnce) {
     EXPECT_EQ(c.worker, b.name()) << "individual " << c.individual;
   }
   EXPECT_GE(retried, 1);
-  EXPECT_EQ(dispatcher_->stats().gave_up, 0);
+  EXPECT_EQ(dispatcher_->stats().isolated, 0);
 }
 
 TEST_F(DispatchTest, WorkerJoiningLateGetsTheQueuedWork) {
@@ -195,17 +195,19 @@ TEST_F(DispatchTest, WorkersReconnectByThemselvesWhenTheMasterRestarts) {
       << log_.Dump();
 }
 
-TEST_F(DispatchTest, GenomeThatKillsWorkersIsGivenUpAfterThreeAttempts) {
+// Three workers in turn take the suspect and vanish with it, without a
+// word: that is no evidence against the genome, which is then evaluated
+// alone and completes with its true result; the individual that was on
+// the first dying worker with it is retried (alone) and done elsewhere.
+TEST_F(DispatchTest, SuspectWhoseWorkersVanishThreeTimesGetsItsTrueResult) {
   const Individual suspect = Population({DataGenome("seed-139")}, 900)[0];
   const Individual companion = Population({DataGenome("seed-1198")}, 901)[0];
   const std::vector<Individual> others = Population(MixedGenomes(10), 910);
-  ASSERT_TRUE(StartDispatcher(SimulatedOptions()));
+  ASSERT_TRUE(StartDispatcher(WithIsolation(SimulatedOptions())));
   Submit({suspect, companion});
   Submit(others);
 
-  // Three workers in turn take the suspect and die with it, without a
-  // word. The first also holds the companion; later ones ask for one
-  // item only.
+  // The first also holds the companion; later ones ask for one item only.
   for (int round = 1; round <= 3; ++round) {
     SCOPED_TRACE("round " + std::to_string(round));
     const uint64_t pid = 7000 + round;
@@ -226,7 +228,7 @@ TEST_F(DispatchTest, GenomeThatKillsWorkersIsGivenUpAfterThreeAttempts) {
         ASSERT_EQ(fake.work_messages().size(), 1u);
         EXPECT_EQ(fake.work_messages()[0].items_size(), 1);
       }
-    }  // Dies.
+    }  // Vanishes.
     ASSERT_TRUE(Serve(
         [&] {
           return log_.Count({"worker fake-worker:" + std::to_string(pid) +
@@ -234,15 +236,19 @@ TEST_F(DispatchTest, GenomeThatKillsWorkersIsGivenUpAfterThreeAttempts) {
         },
         kShortWait));
   }
-  const Completion* given_up = FindCompletion(suspect.id);
-  ASSERT_NE(given_up, nullptr) << log_.Dump();
-  EXPECT_EQ(given_up->result.status(), v1::EvaluationResult::NOT_EVALUATED);
-  EXPECT_NE(given_up->result.reason().find("3 attempts"), std::string::npos)
-      << given_up->result.reason();
-  EXPECT_FALSE(given_up->result.has_fitness());
-  EXPECT_EQ(given_up->attempts, 3);
-  EXPECT_EQ(log_.Count({"gave up on individual 900 after 3 attempts"}), 1);
-  EXPECT_EQ(CompletionsOf(suspect.id), 1);
+  EXPECT_EQ(log_.Count({"individual 900: 3 leases ended without a result",
+                        "evaluating it alone"}),
+            1)
+      << log_.Dump();
+  ASSERT_TRUE(Serve([&] { return FindCompletion(suspect.id) != nullptr; },
+                    kLongWait, LetChildrenRun))
+      << log_.Dump();
+  const Completion* alone = FindCompletion(suspect.id);
+  ExpectSameResult(alone->result, suspect.expected, suspect.id);
+  EXPECT_NE(alone->worker.find("(isolated)"), std::string::npos)
+      << alone->worker;
+  EXPECT_EQ(alone->attempts, 3);
+  EXPECT_EQ(log_.Count({"individual 900 evaluated alone: OK"}), 1);
 
   // The others, the companion included, complete normally on a worker
   // that answers.
@@ -253,28 +259,27 @@ TEST_F(DispatchTest, GenomeThatKillsWorkersIsGivenUpAfterThreeAttempts) {
   ASSERT_TRUE(ServeUntilAllDone(kLongWait, [&] { Answer(worker, &answered); }));
   std::vector<Individual> evaluated = others;
   evaluated.push_back(companion);
-  completions_.erase(std::remove_if(completions_.begin(), completions_.end(),
-                                    [&](const Completion& c) {
-                                      return c.individual == suspect.id;
-                                    }),
-                     completions_.end());
+  evaluated.push_back(suspect);
   ExpectEachCompletedOnceAsEvaluatedDirectly(evaluated);
   const Completion* retried = FindCompletion(companion.id);
   ASSERT_NE(retried, nullptr);
   EXPECT_EQ(retried->attempts, 1);
   EXPECT_EQ(retried->worker, "fake-worker:7900");
-  EXPECT_EQ(dispatcher_->stats().gave_up, 1);
+  EXPECT_EQ(dispatcher_->stats().isolated, 1);
+  EXPECT_EQ(dispatcher_->stats().crashed, 0);
+  EXPECT_EQ(isolation_->running(), 0u);
 }
 
-TEST_F(DispatchTest, IndividualWhoseLeaseExpiresThreeTimesIsGivenUp) {
+// A worker that takes the individual each time it is offered and never
+// answers: three expired leases, then the evaluation alone gives the true
+// result.
+TEST_F(DispatchTest, IndividualWhoseLeaseExpiresThreeTimesGetsItsTrueResult) {
   const Individual stuck = Population({DataGenome("seed-139")}, 1300)[0];
   DispatcherOptions options = SimulatedOptions();
   options.lease_ms = 200;
-  ASSERT_TRUE(StartDispatcher(options));
+  ASSERT_TRUE(StartDispatcher(WithIsolation(options)));
   Submit({stuck});
 
-  // A worker that stays alive and takes the individual each time it is
-  // offered, and never answers.
   FakeWorker fake(context_, dispatcher_->endpoint(), clock_);
   auto pump = [&] { fake.Pump(); };
   fake.Hello(1, 4444);
@@ -292,15 +297,16 @@ TEST_F(DispatchTest, IndividualWhoseLeaseExpiresThreeTimesIsGivenUp) {
         },
         kShortWait, pump));
   }
-  ServeFor(milliseconds(50), pump);
-  ASSERT_EQ(CompletionsOf(stuck.id), 1) << log_.Dump();
-  const Completion& given_up = completions_[0];
-  EXPECT_EQ(given_up.result.status(), v1::EvaluationResult::NOT_EVALUATED);
-  EXPECT_NE(given_up.result.reason().find("3 attempts"), std::string::npos)
-      << given_up.result.reason();
-  EXPECT_EQ(given_up.attempts, 3);
+  ASSERT_TRUE(Serve([&] { return CompletionsOf(stuck.id) == 1; }, kLongWait,
+                    [&] {
+                      pump();
+                      LetChildrenRun();
+                    }))
+      << log_.Dump();
+  ExpectSameResult(completions_[0].result, stuck.expected, stuck.id);
+  EXPECT_EQ(completions_[0].attempts, 3);
   EXPECT_EQ(dispatcher_->pending(), 0u);
-  EXPECT_EQ(dispatcher_->stats().gave_up, 1);
+  EXPECT_EQ(dispatcher_->stats().isolated, 1);
   EXPECT_EQ(log_.Count({"fake-worker:4444 silent"}), 0);
 }
 
@@ -336,7 +342,7 @@ TEST_F(DispatchTest, WorkerReconnectingUnderItsInstanceCostsNoAttempt) {
     EXPECT_EQ(dispatcher_->workers(), 1u);
   }
   EXPECT_EQ(CompletionsOf(held.id), 0) << log_.Dump();
-  EXPECT_EQ(dispatcher_->stats().gave_up, 0);
+  EXPECT_EQ(dispatcher_->stats().isolated, 0);
 
   // Another process under the same host:pid does not replace it.
   FakeWorker& current = *sessions.back();
@@ -366,21 +372,20 @@ TEST_F(DispatchTest, WorkerReconnectingUnderItsInstanceCostsNoAttempt) {
 // suspect is sent alone in its Work message, but other individuals may be
 // leased to the same worker at the same time (Dispatch only breaks the
 // batch). A one-thread worker asks for 2 items, so each time it takes the
-// killer genome it also takes the companion, which dies with it and is
-// given up after 3 attempts although its genome is fine. dispatcher.h
+// killer genome it also takes the companion, which dies with it and uses
+// up its 3 attempts although its genome is fine. dispatcher.h
 // promises the opposite ("retried alone, so one genome that kills workers
 // does not take others down with it").
 TEST_F(DispatchTest, SuspectIsLeasedAloneSoItDoesNotTakeOthersDownWithIt) {
   const Individual suspect = Population({DataGenome("seed-139")}, 950)[0];
   const Individual companion = Population({DataGenome("seed-1198")}, 951)[0];
-  ASSERT_TRUE(StartDispatcher(SimulatedOptions()));
+  ASSERT_TRUE(StartDispatcher(WithIsolation(SimulatedOptions())));
   Submit({suspect, companion});
 
   // Workers asking for 2 items each (as a real one-thread worker does);
   // each dies, without a word, whenever it holds the suspect; items it
   // gets while not holding the suspect it answers correctly.
-  for (int round = 1; round <= 6 && FindCompletion(suspect.id) == nullptr;
-       ++round) {
+  for (int round = 1; round <= protocol::kMaxAttempts; ++round) {
     SCOPED_TRACE("round " + std::to_string(round));
     const uint64_t pid = 7100 + round;
     {
@@ -421,9 +426,11 @@ TEST_F(DispatchTest, SuspectIsLeasedAloneSoItDoesNotTakeOthersDownWithIt) {
         },
         kShortWait));
   }
-  const Completion* given_up = FindCompletion(suspect.id);
-  ASSERT_NE(given_up, nullptr);
-  EXPECT_EQ(given_up->result.status(), v1::EvaluationResult::NOT_EVALUATED);
+  // Evaluated alone after the third, with its true result.
+  ASSERT_TRUE(Serve([&] { return FindCompletion(suspect.id) != nullptr; },
+                    kLongWait, LetChildrenRun));
+  ExpectSameResult(FindCompletion(suspect.id)->result, suspect.expected,
+                   suspect.id);
 
   FakeWorker worker(context_, dispatcher_->endpoint(), clock_);
   worker.Hello(1, 7199);

@@ -1,9 +1,11 @@
-// Runs in the lineage store: CreateRun, Runs, FinishRun, UpdateRunConfig.
+// Runs in the lineage store: CreateRun, Runs, FinishRun, UpdateRunConfig
+// and the configuration history it keeps (ConfigHistory).
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <google/protobuf/text_format.h>
@@ -108,7 +110,9 @@ TEST(RunsTest, UpdateRunConfigReplacesConfigAndMarksRunning) {
   ASSERT_TRUE(store->FinishRun(*run).ok());
   v1::RunConfig longer = SmallRunConfig(1);
   longer.mutable_evolution()->set_generations(40);
-  ASSERT_TRUE(store->UpdateRunConfig(*run, longer, "b").ok());
+  ASSERT_TRUE(
+      store->UpdateRunConfig(*run, 20, longer, "b", "generations set to 40")
+          .ok());
 
   Result<std::vector<RunRow>> runs = store->Runs();
   ASSERT_TRUE(runs.ok());
@@ -133,11 +137,87 @@ TEST(RunsTest, UpdateRunConfigKeepsSeedColumnInStepWithConfig) {
   ASSERT_NE(store, nullptr);
   Result<int64_t> run = store->CreateRun(1, SmallRunConfig(1), "b");
   ASSERT_TRUE(run.ok());
-  ASSERT_TRUE(store->UpdateRunConfig(*run, SmallRunConfig(9), "b").ok());
+  ASSERT_TRUE(
+      store->UpdateRunConfig(*run, 3, SmallRunConfig(9), "b", "--force").ok());
   Result<std::vector<RunRow>> runs = store->Runs();
   ASSERT_TRUE(runs.ok());
   ASSERT_EQ(runs->size(), 1u);
   EXPECT_EQ((*runs)[0].seed, (*runs)[0].config.evolution().seed());
+}
+
+// Issue 14: a forced resume replaced the run's configuration and nothing
+// recorded that earlier generations ran with the old one. The history
+// keeps every configuration, from which generation, by which build, why.
+TEST(RunsTest, ConfigHistoryKeepsEveryConfigurationFromItsGeneration) {
+  std::unique_ptr<Store> store = MemoryStore();
+  ASSERT_NE(store, nullptr);
+  Result<int64_t> run = store->CreateRun(1, SmallRunConfig(1), "build-a");
+  Result<int64_t> other = store->CreateRun(2, SmallRunConfig(2), "build-a");
+  ASSERT_TRUE(run.ok() && other.ok());
+  v1::RunConfig longer = SmallRunConfig(1);
+  longer.mutable_evolution()->set_generations(40);
+  ASSERT_TRUE(store
+                  ->UpdateRunConfig(*run, 12, longer, "build-a",
+                                    "generations set to 40")
+                  .ok());
+  ASSERT_TRUE(store
+                  ->UpdateRunConfig(*run, 25, SmallRunConfig(9), "build-b",
+                                    "--force: the configuration given differs")
+                  .ok());
+
+  Result<std::vector<RunConfigRow>> history = store->ConfigHistory(*run);
+  ASSERT_TRUE(history.ok()) << history.status().ToString();
+  ASSERT_EQ(history->size(), 3u);
+  const std::vector<
+      std::tuple<int, int, v1::RunConfig, std::string, std::string>>
+      expected = {{0, 0, SmallRunConfig(1), "build-a", "started"},
+                  {1, 12, longer, "build-a", "generations set to 40"},
+                  {2, 25, SmallRunConfig(9), "build-b",
+                   "--force: the configuration given differs"}};
+  for (size_t i = 0; i < expected.size(); ++i) {
+    SCOPED_TRACE("change " + std::to_string(i));
+    const RunConfigRow& row = (*history)[i];
+    const auto& [change, from, config, build, reason] = expected[i];
+    EXPECT_EQ(row.change, change);
+    EXPECT_EQ(row.from_generation, from);
+    EXPECT_TRUE(MessageDifferencer::Equals(row.config, config));
+    EXPECT_EQ(row.config_hash, Hex64(protocol::MessageHash(config)));
+    EXPECT_EQ(row.build_id, build);
+    EXPECT_EQ(row.reason, reason);
+    EXPECT_TRUE(IsUtcStamp(row.recorded_at)) << row.recorded_at;
+  }
+  // The run's row shows the last; the other run's history is its own.
+  Result<std::vector<RunRow>> runs = store->Runs();
+  ASSERT_TRUE(runs.ok());
+  EXPECT_EQ((*runs)[0].config_hash, (*history)[2].config_hash);
+  EXPECT_EQ((*runs)[0].build_id, "build-b");
+  Result<std::vector<RunConfigRow>> others = store->ConfigHistory(*other);
+  ASSERT_TRUE(others.ok());
+  ASSERT_EQ(others->size(), 1u);
+  EXPECT_TRUE(
+      MessageDifferencer::Equals((*others)[0].config, SmallRunConfig(2)));
+  Result<std::vector<RunConfigRow>> none = store->ConfigHistory(99);
+  ASSERT_TRUE(none.ok());
+  EXPECT_TRUE(none->empty());
+  // config_text is each configuration in text format.
+  v1::RunConfig from_text;
+  ASSERT_TRUE(google::protobuf::TextFormat::ParseFromString(
+      Value(*store, "SELECT config_text FROM run_configs WHERE run_id = " +
+                        std::to_string(*run) + " AND change = 1"),
+      &from_text));
+  EXPECT_TRUE(MessageDifferencer::Equals(from_text, longer));
+}
+
+// A change is all or nothing: the run's row and its history agree.
+TEST(RunsTest, ConfigChangeOfAnUnknownRunLeavesNoHistory) {
+  std::unique_ptr<Store> store = MemoryStore();
+  ASSERT_NE(store, nullptr);
+  Result<int64_t> run = store->CreateRun(1, SmallRunConfig(1), "b");
+  ASSERT_TRUE(run.ok());
+  // run_configs refers to runs: the insert fails, and the update with it.
+  EXPECT_FALSE(
+      store->UpdateRunConfig(*run + 1, 2, SmallRunConfig(3), "b", "x").ok());
+  EXPECT_EQ(Value(*store, "SELECT COUNT(*) FROM run_configs"), "1");
 }
 
 TEST(RunsTest, UnreadableConfigurationIsReportedNotIgnored) {

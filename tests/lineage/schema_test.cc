@@ -119,6 +119,7 @@ TEST(SchemaTest, NewStoreHasCurrentVersionTablesViewsAndIndexes) {
       {"table", "generations"},
       {"table", "members"},
       {"table", "parents"},
+      {"table", "run_configs"},
       {"table", "runs"},
       {"view", "ancestry"},
       {"view", "best"},
@@ -407,6 +408,71 @@ TEST(SchemaTest, Version3StoreGainsBodyColumnsNullInEveryOldRow) {
   }
   Result<std::unique_ptr<Store>> upgraded = Store::OpenForQueries(file.path());
   EXPECT_TRUE(upgraded.ok()) << upgraded.status().ToString();
+}
+
+// A store written by schema version 4 gains the configuration history: each
+// run's configuration as it stands, from generation 0, saying that earlier
+// changes were not recorded; the rest reads as before. Then changes are
+// recorded after it.
+TEST(SchemaTest, Version4StoreGainsItsRunsConfigurationsAsTheirHistory) {
+  TempStorePath file("v4");
+  const v1::RunConfig config = testing::SmallRunConfig(5);
+  {
+    Result<std::unique_ptr<sql::Database>> db =
+        sql::Database::Open(file.path());
+    ASSERT_TRUE(db.ok()) << db.status().ToString();
+    ASSERT_TRUE(Migrate(**db, 4).ok());
+    Result<sql::Statement> insert = (*db)->Prepare(
+        "INSERT INTO runs VALUES (?, 5, ?, 'text', ?, ?,"
+        " '2026-01-01T00:00:00.000Z', NULL, 'running')");
+    ASSERT_TRUE(insert.ok());
+    for (int64_t run : {1, 2}) {
+      insert->Bind(1, run)
+          .BindBlob(2, config.SerializeAsString())
+          .Bind(3, "00000000000000f" + std::to_string(run))
+          .Bind(4, "build " + std::to_string(run));
+      ASSERT_TRUE(insert->Run().ok());
+    }
+  }
+  std::vector<std::vector<std::string>> runs_before =
+      RawRows(file.path(), "SELECT * FROM runs ORDER BY run_id");
+  ASSERT_EQ(runs_before.size(), 2u);
+
+  Result<std::unique_ptr<Store>> store = Store::Open(file.path());
+  ASSERT_TRUE(store.ok()) << store.status().ToString();
+  EXPECT_EQ(UserVersion(file.path()), kSchemaVersion);
+  EXPECT_EQ(RawRows(file.path(), "SELECT * FROM runs ORDER BY run_id"),
+            runs_before);
+  EXPECT_EQ(Rows(**store,
+                 "SELECT c.run_id, c.change, c.from_generation,"
+                 " c.config = r.config AND c.config_text = r.config_text AND"
+                 " c.config_hash = r.config_hash AND c.build_id = r.build_id"
+                 " AND c.recorded_at = r.started_at"
+                 " FROM run_configs c JOIN runs r USING (run_id)"
+                 " ORDER BY c.run_id, c.change"),
+            (std::vector<std::vector<std::string>>{{"1", "0", "0", "1"},
+                                                   {"2", "0", "0", "1"}}));
+  for (int64_t run : {1, 2}) {
+    Result<std::vector<RunConfigRow>> history = (*store)->ConfigHistory(run);
+    ASSERT_TRUE(history.ok()) << history.status().ToString();
+    ASSERT_EQ(history->size(), 1u);
+    EXPECT_EQ((*history)[0].from_generation, 0);
+    EXPECT_TRUE(Contains((*history)[0].reason,
+                         "earlier changes were not "
+                         "recorded"))
+        << (*history)[0].reason;
+    EXPECT_EQ((*history)[0].config.SerializeAsString(),
+              config.SerializeAsString());
+  }
+  ASSERT_TRUE(
+      (*store)
+          ->UpdateRunConfig(1, 7, testing::SmallRunConfig(6), "b", "--force")
+          .ok());
+  Result<std::vector<RunConfigRow>> history = (*store)->ConfigHistory(1);
+  ASSERT_TRUE(history.ok());
+  ASSERT_EQ(history->size(), 2u);
+  EXPECT_EQ((*history)[1].change, 1);
+  EXPECT_EQ((*history)[1].from_generation, 7);
 }
 
 // An individual of a realistic genome (about 1 kB) costs about its size on

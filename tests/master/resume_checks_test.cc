@@ -1,7 +1,8 @@
 // A resume continues the stored run only with the stored configuration and
 // simulator build: another configuration or build is refused with a
 // message saying which, unless --force, which then records the new
-// configuration.
+// configuration, keeping the old ones in the run's configuration history
+// (`animat lineage configs`).
 #include <csignal>
 #include <filesystem>
 #include <memory>
@@ -10,6 +11,7 @@
 #include <sqlite3.h>
 
 #include "animat/v1/evolution.pb.h"
+#include "common/io/proto_file.h"
 #include "tests/master/master_harness.h"
 
 namespace animat::testing {
@@ -120,6 +122,54 @@ TEST_F(ResumeChecksTest, AnotherConfigurationIsRefusedUnlessForced) {
   EXPECT_EQ(QueryInt(db_, "SELECT seed FROM runs"), 22);
   // Now the run's configuration: a plain resume takes it.
   ExpectAccepted({"--config", other_config_}, {});
+
+  // Nothing of the provenance is lost: the history holds the configuration
+  // the run started with, the extension, and the forced one, each from the
+  // generation the run had reached, and the runs row the last.
+  const std::vector<SqlRow> history = QueryRows(
+      db_,
+      "SELECT change, reason, config_hash = (SELECT config_hash FROM runs),"
+      " from_generation FROM run_configs ORDER BY change");
+  ASSERT_EQ(history.size(), 3u);
+  EXPECT_EQ(history[0][1], "started");
+  EXPECT_EQ(history[1][1], "generations set to 9");
+  EXPECT_EQ(history[2][1],
+            "--force: the configuration given differs from the run's");
+  EXPECT_EQ(history[2][2], "1");
+  EXPECT_EQ(history[0][2], "0");
+  EXPECT_EQ(history[0][3], "0");
+  EXPECT_LE(std::stoi(history[0][3]), std::stoi(history[1][3]));
+  EXPECT_LE(std::stoi(history[1][3]), std::stoi(history[2][3]));
+  EXPECT_EQ(QueryInt(db_,
+                     "SELECT COUNT(DISTINCT config_hash) FROM "
+                     "run_configs"),
+            3);
+
+  // animat lineage configs says the same, one line a configuration, and
+  // writes the configuration in force at a generation.
+  std::unique_ptr<ChildProcess> listed =
+      StartAnimat({"lineage", "configs", "--db", db_});
+  ASSERT_TRUE(AwaitExit(*listed, kStepWait, "lineage configs"));
+  EXPECT_EQ(listed->exit_code(), 0) << listed->output();
+  const std::string lines = listed->standard_output();
+  EXPECT_NE(lines.find("0: from generation 0, config "), std::string::npos)
+      << lines;
+  EXPECT_NE(lines.find(": started\n1: from generation " + history[1][3]),
+            std::string::npos)
+      << lines;
+  EXPECT_NE(lines.find(": --force: the configuration given differs from the "
+                       "run's\n"),
+            std::string::npos)
+      << lines;
+  const std::string latest = Path("latest.txtpb");
+  std::unique_ptr<ChildProcess> written =
+      StartAnimat({"lineage", "configs", "--db", db_, "--generation", "1000",
+                   "-o", latest});
+  ASSERT_TRUE(AwaitExit(*written, kStepWait, "lineage configs --generation"));
+  EXPECT_EQ(written->exit_code(), 0) << written->output();
+  v1::RunConfig in_force;
+  ASSERT_TRUE(ReadProtoFile(latest, &in_force).ok());
+  EXPECT_EQ(in_force.evolution().seed(), 22u);
 }
 
 TEST_F(ResumeChecksTest, AnotherSimulatorBuildIsRefusedUnlessForced) {

@@ -270,6 +270,13 @@ TEST_F(StartupTest, EveryFlagRefusesMalformedValuesWithAMessage) {
   with(worker, {"--exit-when-done=maybe"});
   with(worker, {"--no-such-flag"});
   with(worker, {"--connect", huge});
+  // What a master runs to evaluate one genome alone (worker/evaluate_one.h).
+  for (const std::string& value : {std::string(), missing, junk, huge}) {
+    cases.push_back({worker_bin, "--evaluate-one", value, "--result",
+                     Path("result.binpb")});
+  }
+  cases.push_back({worker_bin, "--evaluate-one", junk});
+  cases.push_back({worker_bin, "--evaluate-one", junk, "--result"});
 
   for (const std::vector<std::string>& argv : cases) {
     std::string line;

@@ -171,7 +171,9 @@ inline Progress ReadProgress(const std::string& path) {
 }
 
 // What a run's seed and configuration decide, table by table, in a fixed
-// order: everything but times, workers and wall times.
+// order: everything but times, workers and wall times, and the history of
+// how the run was run (run_configs: an extended run has one more change
+// than the same run made at once).
 struct StoreContents {
   std::vector<SqlRow> runs, individuals, parents, generations, members;
 };

@@ -98,11 +98,10 @@ TEST(ValidateResultTest, RefusesSpreadsThatAreNotFiniteNonNegativeAndOrdered) {
   EXPECT_EQ(Refusal(r), "body spread_minor -inf");
   r = OkWithBody();
   r.mutable_body()->set_spread_minor(-0.5);
-  EXPECT_EQ(Refusal(r), "body spread_minor -0.500000");
+  EXPECT_EQ(Refusal(r), "body spread_minor -0.5");
   r = OkWithBody();
   r.mutable_body()->set_spread_minor(3.0);
-  EXPECT_EQ(Refusal(r),
-            "body spread_minor 3.000000 above spread_major 2.500000");
+  EXPECT_EQ(Refusal(r), "body spread_minor 3 above spread_major 2.5");
 }
 
 TEST(ValidateResultTest, ABadBodyIsRefusedWhateverTheStatus) {
