@@ -16,7 +16,6 @@
 #ifndef ANIMAT_COMMON_BASE_FAST_MATH_H_
 #define ANIMAT_COMMON_BASE_FAST_MATH_H_
 
-#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -33,6 +32,17 @@
 namespace animat {
 inline namespace ANIMAT_ISA_NAMESPACE {
 namespace fast_math_internal {
+
+// The compiler's built-ins, not std::bit_cast, std::fabs and
+// std::copysign: those are functions that an unoptimised build emits out
+// of line, outside this namespace, where the linker could merge a copy
+// compiled for a wide path into code that runs everywhere.
+inline double FabsOf(double x) { return __builtin_fabs(x); }
+inline float FabsOf(float x) { return __builtin_fabsf(x); }
+inline double CopySignOf(double x, double s) {
+  return __builtin_copysign(x, s);
+}
+inline float CopySignOf(float x, float s) { return __builtin_copysignf(x, s); }
 
 constexpr double kLog2e = 1.44269504088896338700e+00;
 // ln 2 split so that k * kLn2Hi is exact for |k| < 2^11 (fdlibm).
@@ -78,8 +88,8 @@ inline double Expm1Reduced(double r) {
 inline double Reduce(double x, double* scale) {
   const double t = x * kLog2e + kShifter;
   const double k = t - kShifter;
-  const uint64_t bits = (std::bit_cast<uint64_t>(t) + 1023u) << 52;
-  *scale = std::bit_cast<double>(bits);
+  const uint64_t bits = (__builtin_bit_cast(uint64_t, t) + 1023u) << 52;
+  *scale = __builtin_bit_cast(double, bits);
   return (x - k * kLn2Hi) - k * kLn2Lo;
 }
 
@@ -91,26 +101,26 @@ inline double Exp(double x) {
   using namespace fast_math_internal;
   // Branch-free clamp (see Tanh) so array loops vectorise: the sign bit
   // decides which bound applies.
-  const uint64_t bits = std::bit_cast<uint64_t>(x);
+  const uint64_t bits = __builtin_bit_cast(uint64_t, x);
   const uint64_t magnitude = bits & ~(uint64_t{1} << 63);
-  const uint64_t bound = (bits >> 63) ? std::bit_cast<uint64_t>(708.0)
-                                      : std::bit_cast<uint64_t>(709.0);
+  const uint64_t bound = (bits >> 63) ? __builtin_bit_cast(uint64_t, 708.0)
+                                      : __builtin_bit_cast(uint64_t, 709.0);
   const bool outside = magnitude > bound;  // Also true for NaN.
-  const double clamped = std::bit_cast<double>(
-      outside ? (bits & (uint64_t{1} << 63)) | bound : bits);
+  const double clamped = __builtin_bit_cast(
+      double, outside ? (bits & (uint64_t{1} << 63)) | bound : bits);
   double scale;
   const double r = Reduce(clamped, &scale);
   const double y = (1.0 + Expm1Reduced(r)) * scale;
   // Outside the range: 0 below, +inf above, x itself when NaN. Selected
   // with masks so y is always computed and the loop has no branch.
-  const bool is_nan = magnitude > std::bit_cast<uint64_t>(kInfinity);
+  const bool is_nan = magnitude > __builtin_bit_cast(uint64_t, kInfinity);
   const uint64_t beyond =
-      is_nan
-          ? bits
-          : ((bits >> 63) ? uint64_t{0} : std::bit_cast<uint64_t>(kInfinity));
+      is_nan ? bits
+             : ((bits >> 63) ? uint64_t{0}
+                             : __builtin_bit_cast(uint64_t, kInfinity));
   const uint64_t mask = uint64_t{0} - static_cast<uint64_t>(outside);
-  return std::bit_cast<double>((std::bit_cast<uint64_t>(y) & ~mask) |
-                               (beyond & mask));
+  return __builtin_bit_cast(
+      double, (__builtin_bit_cast(uint64_t, y) & ~mask) | (beyond & mask));
 }
 
 // Hyperbolic tangent: odd (bitwise), exactly +-1 for |x| >= 19.1,
@@ -120,15 +130,15 @@ inline double Tanh(double x) {
   // Clamp |x| to 20 (tanh(20) rounds to 1) with an integer minimum: for
   // non-negative doubles the bit patterns order like the values, and this
   // form keeps the loop free of branches so it vectorises.
-  const uint64_t bits = std::bit_cast<uint64_t>(std::fabs(x));
-  constexpr uint64_t kTwenty = std::bit_cast<uint64_t>(20.0);
-  const double a = std::bit_cast<double>(bits < kTwenty ? bits : kTwenty);
+  const uint64_t bits = __builtin_bit_cast(uint64_t, FabsOf(x));
+  constexpr uint64_t kTwenty = __builtin_bit_cast(uint64_t, 20.0);
+  const double a = __builtin_bit_cast(double, bits < kTwenty ? bits : kTwenty);
   double scale;
   const double r = Reduce(2.0 * a, &scale);
   // expm1(2a) = 2^k * expm1(r) + (2^k - 1).
   const double em1 = scale * Expm1Reduced(r) + (scale - 1.0);
   // x - x is 0 for finite x and NaN otherwise.
-  return std::copysign(em1 / (em1 + 2.0), x) * (1.0 + (x - x));
+  return CopySignOf(em1 / (em1 + 2.0), x) * (1.0 + (x - x));
 }
 
 // Single-precision tanh by the same method (expm1 to degree 7 on
@@ -136,19 +146,20 @@ inline double Tanh(double x) {
 // exactly +-1 for |x| >= 9.1; non-finite x gives NaN. Four lanes per SSE
 // vector, so it costs about a third of Tanh per value.
 inline float TanhF(float x) {
+  using namespace fast_math_internal;
   constexpr float kLog2eF = 1.44269504f;
   // ln 2 split so that k * kLn2HiF is exact for |k| < 2^9.
   constexpr float kLn2HiF = 0.693145751953125f;
   constexpr float kLn2LoF = 1.42860677e-06f;
   constexpr float kShifterF = 0x1.8p23f;
-  const uint32_t bits = std::bit_cast<uint32_t>(std::fabs(x));
-  constexpr uint32_t kNine = std::bit_cast<uint32_t>(9.5f);
-  const float a = std::bit_cast<float>(bits < kNine ? bits : kNine);
+  const uint32_t bits = __builtin_bit_cast(uint32_t, FabsOf(x));
+  constexpr uint32_t kNine = __builtin_bit_cast(uint32_t, 9.5f);
+  const float a = __builtin_bit_cast(float, bits < kNine ? bits : kNine);
   const float u = 2.0f * a;
   const float t = u * kLog2eF + kShifterF;
   const float k = t - kShifterF;
   const float scale =
-      std::bit_cast<float>((std::bit_cast<uint32_t>(t) + 127u) << 23);
+      __builtin_bit_cast(float, (__builtin_bit_cast(uint32_t, t) + 127u) << 23);
   const float r = (u - k * kLn2HiF) - k * kLn2LoF;
   float p = 1.0f / 5040.0f;
   p = 1.0f / 720.0f + r * p;
@@ -158,7 +169,7 @@ inline float TanhF(float x) {
   p = 0.5f + r * p;
   p = 1.0f + r * p;
   const float em1 = scale * (r * p) + (scale - 1.0f);
-  return std::copysign(em1 / (em1 + 2.0f), x) * (1.0f + (x - x));
+  return CopySignOf(em1 / (em1 + 2.0f), x) * (1.0f + (x - x));
 }
 
 // sin(x) and cos(x) for |x| < 2^20 (accuracy degrades beyond; arguments
@@ -173,7 +184,7 @@ inline void SinCos(double x, double* sin_out, double* cos_out) {
   constexpr double kPio2_2t = 2.02226624879595063154e-21;
   const double t = x * kTwoOverPi + kShifter;
   const double q = t - kShifter;
-  const uint64_t quadrant = std::bit_cast<uint64_t>(t) & 3u;
+  const uint64_t quadrant = __builtin_bit_cast(uint64_t, t) & 3u;
   const double r = ((x - q * kPio2_1) - q * kPio2_2) - q * kPio2_2t;
   const double r2 = r * r;
   // Taylor series on |r| <= pi/4: sin to degree 17, cos to degree 18

@@ -1,5 +1,9 @@
 // The model's hot loops over cells, compiled once per instruction-set path
-// (isa.h) and run on the path in use. Every path gives the same bits.
+// (isa.h) and run on the path in use. Every path gives the same bits,
+// except the sign and payload of a NaN: which NaN x + y or x * y returns
+// when both are NaN depends on the order of the operands, and compilers
+// swap them freely. A NaN anywhere is a numerical failure of the
+// evaluation (docs/model.md), so no NaN's bits reach a result.
 //
 // The arguments are plain arrays owned by the caller; a kernel keeps no
 // state, allocates nothing and never fails. Thread-safe for distinct

@@ -47,8 +47,14 @@ std::vector<Isa> WiderPaths() {
   return paths;
 }
 
+// The bits of x, every NaN mapped to one pattern: which NaN an operation
+// on two NaNs returns depends on the order of its operands, which no
+// compiler keeps for + and * (kernels.h). A NaN is a numerical failure of
+// the evaluation on every path, so its sign and payload never reach a
+// result.
 template <typename S>
 uint64_t Bits(S x) {
+  if (std::isnan(x)) return ~uint64_t{0};
   if constexpr (sizeof(S) == 4) {
     return std::bit_cast<uint32_t>(x);
   } else {
