@@ -39,8 +39,8 @@ int Run(const Options& o) {
   if (!genome.ok()) return Fail(genome.status().message());
   Result<ModelConfig> config = LoadConfig(o.config);
   if (!config.ok()) return Fail(config.status().message());
-  std::array<double, kInputChannels> inputs;
-  for (int c = 0; c < kInputChannels; ++c) {
+  std::array<double, kInputChannels> inputs{};  // CHEMICAL 0 when not given.
+  for (int c = 0; c < static_cast<int>(o.inputs.size()); ++c) {
     if (!std::isfinite(o.inputs[c])) {
       return Fail(std::string("--inputs: the ") + InputChannelName(c) +
                   " value is not finite");
@@ -85,9 +85,10 @@ Command AddGrnCommand(CLI::App& app) {
   sub->add_option("--genome", options->genome, "Genome file (.json, .txtpb)")
       ->required();
   sub->add_option("--inputs", options->inputs,
-                  "Input values MATERNAL_0,MATERNAL_1,MATERNAL_2,UNIFORM")
+                  "Input values MATERNAL_0,MATERNAL_1,MATERNAL_2,UNIFORM and "
+                  "optionally CHEMICAL (0 when left out)")
       ->delimiter(',')
-      ->expected(kInputChannels)
+      ->expected(kPaperInputChannels, kInputChannels)
       ->required();
   sub->add_option("--steps", options->steps, "Steps to run")
       ->check(CLI::Range(0, 100000000))

@@ -1,11 +1,16 @@
 #include "common/evaluation/evaluator.h"
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <memory>
+#include <system_error>
+#include <thread>
 #include <vector>
 
 #include "common/base/hash.h"
 #include "common/development/signals.h"
+#include "common/evaluation/chemical.h"
 #include "common/grn/network.h"
 #include "common/physics/bullet/bullet_stepper.h"
 
@@ -31,15 +36,14 @@ void ReadActuation(const GrnBatchT<S>& grn, std::vector<double>* expand,
 }
 
 template <typename S>
-uint64_t HashFinalState(const MotionState& state, const GrnBatchT<S>& grn) {
-  StateHash hash;
-  HashMotionState(state, &hash);
+void HashFinalState(const MotionState& state, const GrnBatchT<S>& grn,
+                    StateHash* hash) {
+  HashMotionState(state, hash);
   for (int node = 0; node < grn.network().node_count(); ++node) {
     for (int cell = 0; cell < grn.cells(); ++cell) {
-      hash.AddDouble(grn.level(cell, node));
+      hash->AddDouble(grn.level(cell, node));
     }
   }
-  return hash.value();
 }
 
 // What selection maximises (model §10.1): the distance, or the distance
@@ -56,11 +60,216 @@ bool CheckDue(int step, int last, int interval) {
   return step % interval == 0 || step == last;
 }
 
+// The chemical of active guidance (model §10.2): a point source sensed by
+// the skin cells.
+struct Chemical {
+  Vec2 source;
+  double decay_length = 1.0;
+  std::span<const int> skin_cells;  // Increasing; cells on a skin edge.
+};
+
+struct MotionOutcome {
+  int64_t steps = 0;    // Motion steps run.
+  std::string problem;  // Why it failed; "" when it ran to the end.
+};
+
+// The motion phase from `*state` (model §7.7, §8.1), with the CHEMICAL
+// input recomputed before every network step when `chemical` is not null.
+template <typename S>
+MotionOutcome RunMotion(const ModelConfig& config, GrnBatchT<S>& grn,
+                        MorphogenFieldT<S>& field, SoftBody& soft_body,
+                        MotionStepper& stepper, MotionState* state,
+                        const Chemical* chemical,
+                        EvaluationObserver* observer) {
+  const EvaluationParams& ev = config.evaluation;
+  const int cells = grn.cells();
+  const bool signalling = field.morphogens() > 0;
+  std::vector<double> expand(cells), contract(cells), sensed;
+  ReadActuation(grn, &expand, &contract);
+  if (observer) {
+    observer->OnMotionStep(MotionPhase::kMotion, 0, *state, expand, contract);
+  }
+  MotionOutcome outcome;
+  const int history_base = config.development.steps;
+  for (int step = 1; step <= ev.motion_steps; ++step) {
+    if (signalling) {
+      const int signal_step = history_base + step - 1;
+      field.Record(signal_step, grn);
+      field.Apply(signal_step, &grn);
+    }
+    if (chemical) {
+      SenseChemical(chemical->source, chemical->decay_length,
+                    chemical->skin_cells, state->position, &sensed);
+      grn.SetChemical(sensed);
+    }
+    grn.Step();
+    ReadActuation(grn, &expand, &contract);
+    soft_body.SetActuation(expand, contract);
+    stepper.Step(state);
+    ++outcome.steps;
+    if (CheckDue(step, ev.motion_steps, ev.check_interval)) {
+      const std::string problem = CheckState(*state, ev.max_coordinate);
+      if (!problem.empty()) {
+        outcome.problem = problem + " at motion step " + std::to_string(step);
+        return outcome;
+      }
+    }
+    if (observer) {
+      observer->OnMotionStep(MotionPhase::kMotion, step, *state, expand,
+                             contract);
+    }
+  }
+  return outcome;
+}
+
+struct TrialOutcome {
+  MotionOutcome motion;
+  double distance = 0.0;         // The centre of mass moved (radii).
+  double energy = 0.0;           // Actuation work of the trial.
+  double source_distance = 0.0;  // Final centre of mass to the source.
+  uint64_t hash = 0;             // Final state and levels.
+};
+
+// Runs every guidance trial from copies of the equilibrated state (the
+// development's network and signals, `soft_body`, `state`), on up to
+// options.threads threads; the result is summed in trial order once all
+// have finished, so it does not depend on the thread count.
+template <typename S>
+EvaluationResult RunGuidanceTrials(const ModelConfig& config, const Body& body,
+                                   const BodySummary& summary,
+                                   const DevelopmentT<S>& development,
+                                   const SoftBody& soft_body,
+                                   const MotionState& state, int cells,
+                                   int64_t steps, EvaluationObserver* observer,
+                                   const EvaluateOptions& options) {
+  const GuidanceParams& g = config.guidance;
+  const int trials = g.trials;
+  const Vec2 start = CentreOfMass(state);
+  const std::vector<int> skin = SkinCells(body);
+  const bool watch_all =
+      observer && options.observed_trial == EvaluateOptions::kAllTrials;
+  const int observed = observer && !watch_all ? options.observed_trial : -1;
+  std::vector<Vec2> sources(trials);
+  for (int k = 0; k < trials; ++k) {
+    sources[k] = GuidanceSource(start, k, trials, g.source_distance);
+  }
+
+  std::vector<TrialOutcome> outcomes(trials);
+  auto run_trial = [&](int k) {
+    Chemical chemical;
+    chemical.source = sources[k];
+    chemical.decay_length = g.decay_length;
+    chemical.skin_cells = skin;
+    GrnBatchT<S> grn = development.grn();
+    MorphogenFieldT<S> field = development.field();
+    SoftBody trial_body = soft_body;
+    MotionState trial_state = state;
+    // A Bullet world of its own (a fresh world per trial; contacts start
+    // without the equilibration's cached manifolds).
+    std::unique_ptr<MotionStepper> bullet;
+    if (config.physics.backend == PhysicsBackend::kBullet) {
+      bullet = MakeBulletStepper(&trial_body, body);
+    }
+    MotionStepper& stepper = bullet ? *bullet : trial_body;
+    EvaluationObserver* watcher =
+        watch_all || k == observed ? observer : nullptr;
+    if (watcher) watcher->OnGuidanceTrial(k, sources);
+    TrialOutcome& out = outcomes[k];
+    out.motion = RunMotion(config, grn, field, trial_body, stepper,
+                           &trial_state, &chemical, watcher);
+    if (!out.motion.problem.empty()) return;
+    const Vec2 end = CentreOfMass(trial_state);
+    out.distance = Length(end - start);
+    out.energy = trial_body.actuation_work();
+    out.source_distance = Length(end - chemical.source);
+    StateHash hash;
+    HashFinalState(trial_state, grn, &hash);
+    out.hash = hash.value();
+  };
+
+  const int threads =
+      watch_all ? 1 : std::min(std::max(options.threads, 1), trials);
+  if (threads == 1) {
+    if (observed >= 0 && observed < trials) run_trial(observed);
+    for (int k = 0; k < trials; ++k) {
+      if (k == observed) continue;
+      run_trial(k);
+      if (!outcomes[k].motion.problem.empty()) break;  // Later ones unused.
+    }
+  } else {
+    std::atomic<int> next{0};
+    auto work = [&] {
+      for (int k = next.fetch_add(1); k < trials; k = next.fetch_add(1)) {
+        if (k != observed) run_trial(k);
+      }
+    };
+    std::vector<std::thread> helpers;
+    try {
+      for (int t = 1; t < threads; ++t) helpers.emplace_back(work);
+    } catch (const std::system_error&) {
+      // No more threads: the ones started and this one share the trials.
+    }
+    // The observed trial on this thread: the observer is called on the
+    // evaluating thread.
+    if (observed >= 0 && observed < trials) run_trial(observed);
+    work();
+    for (std::thread& helper : helpers) helper.join();
+  }
+
+  // Trial order, whatever the threads: the first failure decides, and the
+  // steps count up to it.
+  StateHash hash;
+  double score = 0.0, distance = 0.0, energy = 0.0;
+  std::vector<double> source_distances;
+  for (int k = 0; k < trials; ++k) {
+    const TrialOutcome& out = outcomes[k];
+    steps += out.motion.steps;
+    if (!out.motion.problem.empty()) {
+      EvaluationResult failure =
+          Failure(EvalStatus::kNumericalFailure,
+                  "trial " + std::to_string(k) + ": " + out.motion.problem,
+                  cells, steps);
+      failure.body = summary;
+      return failure;
+    }
+    score += g.source_distance - out.source_distance;
+    distance += out.distance;
+    energy += out.energy;
+    source_distances.push_back(out.source_distance);
+    hash.AddU64(out.hash);
+  }
+  score /= trials;
+  distance /= trials;
+  energy /= trials;
+  const char* non_finite = !std::isfinite(score)      ? "non-finite fitness"
+                           : !std::isfinite(distance) ? "non-finite distance"
+                           : !std::isfinite(energy)   ? "non-finite energy"
+                                                      : nullptr;
+  if (non_finite) {
+    EvaluationResult failure =
+        Failure(EvalStatus::kNumericalFailure, non_finite, cells, steps);
+    failure.body = summary;
+    return failure;
+  }
+  EvaluationResult result;
+  result.status = EvalStatus::kOk;
+  result.fitness = score;
+  result.distance = distance;
+  result.energy = energy;
+  result.source_distances = std::move(source_distances);
+  result.cells = cells;
+  result.steps = steps;
+  result.state_hash = hash.value();
+  result.body = summary;
+  return result;
+}
+
 // Development, body, equilibration and motion of a viable network, with
 // network arithmetic in S.
 template <typename S>
 EvaluationResult RunModel(const Network& network, const ModelConfig& config,
-                          EvaluationObserver* observer) {
+                          EvaluationObserver* observer,
+                          const EvaluateOptions& options) {
   // Development (docs/model.md §4, §5).
   DevelopmentT<S> development(network, config.grn, config.development,
                               config.signals);
@@ -169,36 +378,19 @@ EvaluationResult RunModel(const Network& network, const ModelConfig& config,
   // (model §10.1).
   for (Vec2& v : state.velocity) v = Vec2{};
   soft_body.ResetActuationWork();
-  const Vec2 start = CentreOfMass(state);
-  if (observer) {
-    observer->OnMotionStep(MotionPhase::kMotion, 0, state, expand, contract);
+  if (config.guidance.enabled) {
+    return RunGuidanceTrials(config, *body, summary, development, soft_body,
+                             state, cells, steps, observer, options);
   }
-  const int history_base = config.development.steps;
-  for (int step = 1; step <= ev.motion_steps; ++step) {
-    if (signalling) {
-      const int signal_step = history_base + step - 1;
-      field.Record(signal_step, grn);
-      field.Apply(signal_step, &grn);
-    }
-    grn.Step();
-    ReadActuation(grn, &expand, &contract);
-    soft_body.SetActuation(expand, contract);
-    stepper.Step(&state);
-    ++steps;
-    if (CheckDue(step, ev.motion_steps, ev.check_interval)) {
-      const std::string problem = CheckState(state, ev.max_coordinate);
-      if (!problem.empty()) {
-        EvaluationResult failure = Failure(
-            EvalStatus::kNumericalFailure,
-            problem + " at motion step " + std::to_string(step), cells, steps);
-        failure.body = summary;
-        return failure;
-      }
-    }
-    if (observer) {
-      observer->OnMotionStep(MotionPhase::kMotion, step, state, expand,
-                             contract);
-    }
+  const Vec2 start = CentreOfMass(state);
+  const MotionOutcome motion = RunMotion(config, grn, field, soft_body, stepper,
+                                         &state, nullptr, observer);
+  steps += motion.steps;
+  if (!motion.problem.empty()) {
+    EvaluationResult failure =
+        Failure(EvalStatus::kNumericalFailure, motion.problem, cells, steps);
+    failure.body = summary;
+    return failure;
   }
 
   const double fitness = Length(CentreOfMass(state) - start);
@@ -218,7 +410,9 @@ EvaluationResult RunModel(const Network& network, const ModelConfig& config,
   result.energy = energy;
   result.cells = cells;
   result.steps = steps;
-  result.state_hash = HashFinalState(state, grn);
+  StateHash hash;
+  HashFinalState(state, grn, &hash);
+  result.state_hash = hash.value();
   result.body = summary;
   return result;
 }
@@ -257,6 +451,7 @@ v1::EvaluationResult EvaluationResultToProto(const EvaluationResult& r) {
   if (r.fitness) m.set_fitness(*r.fitness);
   if (r.energy) m.set_energy(*r.energy);
   if (r.distance) m.set_distance(*r.distance);
+  for (double d : r.source_distances) m.add_source_distances(d);
   m.set_cells(r.cells);
   m.set_steps(r.steps);
   m.set_state_hash(r.state_hash);
@@ -273,7 +468,8 @@ v1::EvaluationResult EvaluationResultToProto(const EvaluationResult& r) {
 }
 
 EvaluationResult Evaluate(const Genome& genome, const ModelConfig& config,
-                          EvaluationObserver* observer) {
+                          EvaluationObserver* observer,
+                          const EvaluateOptions& options) {
   Status valid = ValidateGenome(genome);
   if (!valid.ok()) {
     return Failure(EvalStatus::kInvalidGenome, valid.message(), 0, 0);
@@ -284,9 +480,9 @@ EvaluationResult Evaluate(const Genome& genome, const ModelConfig& config,
     return Failure(EvalStatus::kNonViable, viability.reason, 0, 0);
   }
   if (config.grn.precision == Precision::kFloat) {
-    return RunModel<float>(network, config, observer);
+    return RunModel<float>(network, config, observer, options);
   }
-  return RunModel<double>(network, config, observer);
+  return RunModel<double>(network, config, observer, options);
 }
 
 }  // namespace animat

@@ -12,6 +12,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "animat/v1/trace.pb.h"
 #include "common/body/body.h"
@@ -61,8 +62,12 @@ struct EvaluationResult {
   // only when kOk.
   std::optional<double> energy;
   // The distance the centre of mass moved over the motion phase (radii);
-  // only when kOk. Equals fitness under the paper's fitness.
+  // only when kOk. Equals fitness under the paper's fitness. With guidance
+  // (model §10.2), distance and energy are the means over the trials.
   std::optional<double> distance;
+  // With guidance and kOk: the final distance from the centre of mass to
+  // the source (radii), one per trial in trial order; otherwise empty.
+  std::vector<double> source_distances;
 };
 
 v1::EvaluationResult EvaluationResultToProto(const EvaluationResult& result);
@@ -87,6 +92,13 @@ class EvaluationObserver {
     (void)expand;
     (void)contract;
   }
+  // With guidance (model §10.2), before the motion of an observed trial:
+  // its index, and every trial's chemical source (radii), in trial order.
+  // Equilibration is observed once, before.
+  virtual void OnGuidanceTrial(int trial, std::span<const Vec2> sources) {
+    (void)trial;
+    (void)sources;
+  }
   // After `step` steps of `phase` (step 0: the state as the phase starts).
   virtual void OnMotionStep(MotionPhase phase, int step,
                             const MotionState& state,
@@ -100,10 +112,25 @@ class EvaluationObserver {
   }
 };
 
+// How an evaluation runs; the result does not depend on it.
+struct EvaluateOptions {
+  // Threads for the guidance trials (model §10.2), >= 1: trials run
+  // concurrently on copies of the equilibrated state and are summed in
+  // trial order, so the bits are the same for every count. 1: all on the
+  // calling thread.
+  int threads = 1;
+  // The guidance trial the observer sees, in [0, trials), or kAllTrials:
+  // every trial in turn, in trial order, all on the calling thread.
+  static constexpr int kAllTrials = -1;
+  int observed_trial = 0;
+};
+
 // Evaluates `genome` under `config` (which must have passed
-// ConfigFromProto's checks). `observer` may be null.
+// ConfigFromProto's checks). `observer` may be null; it is called on the
+// calling thread only.
 EvaluationResult Evaluate(const Genome& genome, const ModelConfig& config,
-                          EvaluationObserver* observer = nullptr);
+                          EvaluationObserver* observer = nullptr,
+                          const EvaluateOptions& options = {});
 
 }  // namespace animat
 

@@ -54,6 +54,32 @@ Status EvaluationParamsFromProto(const v1::EvaluationConfig& m,
   return Status::Ok();
 }
 
+Status GuidanceParamsFromProto(const v1::GuidanceConfig& m,
+                               GuidanceParams* params) {
+  GuidanceParams p = *params;
+  if (m.has_enabled()) p.enabled = m.enabled();
+  if (m.has_trials()) p.trials = m.trials();
+  if (m.has_source_distance()) p.source_distance = m.source_distance();
+  if (m.has_decay_length()) p.decay_length = m.decay_length();
+  Status status = FirstError({
+      RequireIntInRange("guidance.trials", p.trials, 1, kMaxGuidanceTrials),
+      RequirePositive("guidance.source_distance", p.source_distance),
+      RequirePositive("guidance.decay_length", p.decay_length),
+  });
+  if (!status.ok()) return status;
+  *params = p;
+  return Status::Ok();
+}
+
+v1::GuidanceConfig GuidanceParamsToProto(const GuidanceParams& p) {
+  v1::GuidanceConfig m;
+  m.set_enabled(p.enabled);
+  m.set_trials(p.trials);
+  m.set_source_distance(p.source_distance);
+  m.set_decay_length(p.decay_length);
+  return m;
+}
+
 }  // namespace
 
 const char* FitnessKindName(FitnessKind kind) {
@@ -74,8 +100,19 @@ Status ConfigFromProto(const v1::Config& message, ModelConfig* config) {
       SignalParamsFromProto(message.signals(), &c.signals),
       PhysicsParamsFromProto(message.physics(), &c.physics),
       EvaluationParamsFromProto(message.evaluation(), &c.evaluation),
+      GuidanceParamsFromProto(message.guidance(), &c.guidance),
   });
   if (!status.ok()) return status;
+  if (c.guidance.enabled && c.evaluation.fitness != FitnessKind::kDistance) {
+    // The budget form scales a distance; a guidance score may be negative.
+    return Status::InvalidArgument(
+        std::string("guidance.enabled: the guidance fitness replaces "
+                    "evaluation.fitness, which must then be DISTANCE, got ") +
+        v1::EvaluationConfig::Fitness_Name(
+            c.evaluation.fitness == FitnessKind::kDistance
+                ? v1::EvaluationConfig::DISTANCE
+                : v1::EvaluationConfig::DISTANCE_WITHIN_ENERGY_BUDGET));
+  }
   *config = c;
   return Status::Ok();
 }
@@ -97,6 +134,7 @@ v1::Config ConfigToProto(const ModelConfig& c) {
                      ? v1::EvaluationConfig::DISTANCE
                      : v1::EvaluationConfig::DISTANCE_WITHIN_ENERGY_BUDGET);
   e->set_energy_budget(c.evaluation.energy_budget);
+  *m.mutable_guidance() = GuidanceParamsToProto(c.guidance);
   return m;
 }
 

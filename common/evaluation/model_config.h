@@ -35,12 +35,23 @@ struct EvaluationParams {
   double energy_budget = 10000.0;
 };
 
+// Active guidance toward a chemical source (docs/model.md §10.2); off by
+// default, which is the paper's model.
+inline constexpr int kMaxGuidanceTrials = 64;
+struct GuidanceParams {
+  bool enabled = false;
+  int trials = 4;                 // K, in [1, kMaxGuidanceTrials].
+  double source_distance = 30.0;  // D (radii), > 0.
+  double decay_length = 10.0;     // lambda_c (radii), > 0.
+};
+
 struct ModelConfig {
   GrnParams grn;
   DevelopmentParams development;
   SignalParams signals;
   PhysicsParams physics;
   EvaluationParams evaluation;
+  GuidanceParams guidance;
 };
 
 // Starts from `*config` (usually the defaults), overwrites the fields

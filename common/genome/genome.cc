@@ -22,8 +22,8 @@ const char* ElementTypeName(ElementType type) {
 }
 
 const char* InputChannelName(int channel) {
-  static const char* const kNames[kInputChannels] = {"MATERNAL_0", "MATERNAL_1",
-                                                     "MATERNAL_2", "UNIFORM"};
+  static const char* const kNames[kInputChannels] = {
+      "MATERNAL_0", "MATERNAL_1", "MATERNAL_2", "UNIFORM", "CHEMICAL"};
   return channel >= 0 && channel < kInputChannels ? kNames[channel] : "?";
 }
 
@@ -68,7 +68,7 @@ Status ValidateGenome(const Genome& genome) {
           return Status::InvalidArgument(
               where +
               ".channel: an S_IN element needs an input channel "
-              "(MATERNAL_0, MATERNAL_1, MATERNAL_2 or UNIFORM)");
+              "(MATERNAL_0, MATERNAL_1, MATERNAL_2, UNIFORM or CHEMICAL)");
         }
         break;
       case ElementType::kSOut:

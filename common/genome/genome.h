@@ -22,14 +22,21 @@ enum class ElementType : uint8_t {
   kSOut,        // Output node.
 };
 
-// Input channels [paper]: three maternal morphogens and a uniform 1.
+// Input channels: three maternal morphogens and a uniform 1 [paper], and
+// the chemical of active guidance, sensed by skin cells during motion
+// (docs/model.md §10.2) [ours, v2].
 enum class InputChannel : uint8_t {
   kMaternal0,
   kMaternal1,
   kMaternal2,
-  kUniform
+  kUniform,
+  kChemical,
 };
-inline constexpr int kInputChannels = 4;
+inline constexpr int kInputChannels = 5;
+// The paper's channels, the first four: random genomes and mutations draw
+// among these alone unless the run asks for guidance, so paper runs draw
+// exactly as before the chemical channel existed.
+inline constexpr int kPaperInputChannels = 4;
 
 // Output channels [paper].
 enum class OutputChannel : uint8_t {

@@ -8,6 +8,25 @@ namespace {
 constexpr int kFirstInput = v1::Element::MATERNAL_0;
 constexpr int kFirstOutput = v1::Element::DIVIDE;
 
+// The InputChannel of a proto channel, -1 when it is not an input: the
+// paper's four are numbered before the outputs, CHEMICAL after them.
+int InputFromProto(int channel) {
+  if (channel >= kFirstInput && channel < kFirstOutput) {
+    return channel - kFirstInput;
+  }
+  if (channel == v1::Element::CHEMICAL) {
+    return static_cast<int>(InputChannel::kChemical);
+  }
+  return -1;
+}
+
+v1::Element::Channel InputToProto(int channel) {
+  if (channel == static_cast<int>(InputChannel::kChemical)) {
+    return v1::Element::CHEMICAL;
+  }
+  return static_cast<v1::Element::Channel>(kFirstInput + channel);
+}
+
 }  // namespace
 
 Result<Genome> GenomeFromProto(const v1::Genome& message) {
@@ -54,14 +73,14 @@ Result<Genome> GenomeFromProto(const v1::Genome& message) {
                                 ? v1::Element::Channel_Name(m.channel())
                                 : std::to_string(channel);
     if (e.type == ElementType::kSIn) {
-      if (channel < kFirstInput || channel >= kFirstOutput) {
+      e.channel = InputFromProto(channel);
+      if (e.channel < 0) {
         return Status::InvalidArgument(
             where +
             ".channel: an S_IN element needs an input channel "
-            "(MATERNAL_0, MATERNAL_1, MATERNAL_2 or UNIFORM), got " +
+            "(MATERNAL_0, MATERNAL_1, MATERNAL_2, UNIFORM or CHEMICAL), got " +
             got);
       }
-      e.channel = channel - kFirstInput;
     } else if (e.type == ElementType::kSOut) {
       if (channel < kFirstOutput || channel >= kFirstOutput + kOutputChannels) {
         return Status::InvalidArgument(
@@ -100,8 +119,7 @@ v1::Genome GenomeToProto(const Genome& genome) {
         break;
       case ElementType::kSIn:
         m->set_type(v1::Element::S_IN);
-        m->set_channel(
-            static_cast<v1::Element::Channel>(kFirstInput + e.channel));
+        m->set_channel(InputToProto(e.channel));
         break;
       case ElementType::kSOut:
         m->set_type(v1::Element::S_OUT);

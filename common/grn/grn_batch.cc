@@ -24,7 +24,7 @@ void GrnBatchT<S>::Restrict(const std::vector<bool>& needed) {
   const Network& net = *network_;
   active_targets_.clear();
   active_sources_.clear();
-  active_input_sources_ = 0;
+  active_static_sources_ = 0;
   for (size_t t = 0; t < net.targets().size(); ++t) {
     if (needed.empty() || needed[net.targets()[t]]) {
       active_targets_.push_back(static_cast<int>(t));
@@ -40,8 +40,8 @@ void GrnBatchT<S>::Restrict(const std::vector<bool>& needed) {
   for (size_t s = 0; s < net.sources().size(); ++s) {
     if (!needed.empty() && !needed[net.sources()[s].node]) continue;
     active_sources_.push_back(static_cast<int>(s));
-    if (static_cast<int>(s) < net.input_source_count()) {
-      ++active_input_sources_;
+    if (static_cast<int>(s) < net.static_input_source_count()) {
+      ++active_static_sources_;
     }
     for (int k = begin[s]; k < begin[s + 1]; ++k) {
       const int t = net.weight_target()[k];
@@ -97,6 +97,16 @@ void GrnBatchT<S>::SetInputs(int cell,
 }
 
 template <typename S>
+void GrnBatchT<S>::SetChemical(std::span<const double> values) {
+  assert(values.size() >= static_cast<size_t>(cells_));
+  for (int v :
+       network_->input_nodes(static_cast<int>(InputChannel::kChemical))) {
+    S* row = &levels_[static_cast<size_t>(v) * capacity_];
+    for (int c = 0; c < cells_; ++c) row[c] = static_cast<S>(values[c]);
+  }
+}
+
+template <typename S>
 void GrnBatchT<S>::SetOwnSignals() {
   const std::vector<int>& nodes = network_->morphogen_nodes();
   for (size_t m = 0; m < nodes.size(); ++m) {
@@ -138,7 +148,7 @@ void GrnBatchT<S>::AccumulateSources(int first, int last) {
 template <typename S>
 void GrnBatchT<S>::FreezeInputs() {
   std::fill(activation_.begin(), activation_.end(), S{0});
-  AccumulateSources(0, active_input_sources_);
+  AccumulateSources(0, active_static_sources_);
   input_partial_ = activation_;
   frozen_ = true;
 }
@@ -151,7 +161,7 @@ void GrnBatchT<S>::Step() {
   if (frozen_) {
     std::copy(input_partial_.begin(), input_partial_.end(),
               activation_.begin());
-    first = active_input_sources_;
+    first = active_static_sources_;
   } else {
     std::fill(activation_.begin(), activation_.end(), S{0});
   }

@@ -12,6 +12,7 @@
 #define ANIMAT_COMMON_GRN_GRN_BATCH_H_
 
 #include <array>
+#include <span>
 #include <vector>
 
 #include "common/genome/genome.h"
@@ -38,9 +39,14 @@ class GrnBatchT {
   // Adds a copy of `mother` (levels, inputs, signals); returns its index.
   int CopyCell(int mother);
 
-  // Sets the cell's input channel values (MATERNAL_0..2, UNIFORM). Input
-  // nodes hold the value of their channel as their level.
+  // Sets the cell's input channel values (MATERNAL_0..2, UNIFORM,
+  // CHEMICAL). Input nodes hold the value of their channel as their level.
   void SetInputs(int cell, const std::array<double, kInputChannels>& values);
+  // Sets the CHEMICAL channel of every cell: values[c] for cell c <
+  // cells() (values.size() >= cells()). Unlike SetInputs it keeps
+  // FreezeInputs' precomputation, which leaves CHEMICAL out, so the
+  // chemical can change every motion step (docs/model.md §10.2).
+  void SetChemical(std::span<const double> values);
   // Morphogen signals M, one row of capacity() per morphogen (cells
   // contiguous): set them before Step().
   S* signal_row(int morphogen) {
@@ -50,8 +56,9 @@ class GrnBatchT {
   // K(0) = 1, no delay).
   void SetOwnSignals();
 
-  // Precomputes the input nodes' contribution to every activation; until
-  // the next AddCell, CopyCell or SetInputs, Step() reuses it. Results are
+  // Precomputes the contribution of the input nodes other than CHEMICAL to
+  // every activation; until the next AddCell, CopyCell or SetInputs, Step()
+  // reuses it (CHEMICAL nodes are read at every Step). Results are
   // bit-identical with and without freezing.
   void FreezeInputs();
 
@@ -103,7 +110,8 @@ class GrnBatchT {
   // [row_begin_[r], row_begin_[r + 1]) of row_target_ and row_weight_).
   std::vector<int> active_targets_;
   std::vector<int> active_sources_;
-  int active_input_sources_ = 0;  // Leading input sources among them.
+  // Leading input sources among them that are not CHEMICAL (frozen).
+  int active_static_sources_ = 0;
   std::vector<int> row_begin_;
   std::vector<int> row_target_;
   std::vector<S> row_weight_;

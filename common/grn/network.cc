@@ -106,7 +106,7 @@ Network Network::Build(const Genome& genome, const GrnParams& params) {
   }
 
   // Weights and the binding graph, one source node at a time.
-  std::vector<Row> input_rows, level_rows, morphogen_rows;
+  std::vector<Row> input_rows, chemical_rows, level_rows, morphogen_rows;
   net.successors_.assign(nodes, {});
   for (int s = 0; s < nodes; ++s) {
     const Node& source = net.nodes_[s];
@@ -153,7 +153,12 @@ Network Network::Build(const Genome& genome, const GrnParams& params) {
         morphogen.values.push_back(w_morphogen);
       }
     }
-    if (!input.targets.empty()) input_rows.push_back(std::move(input));
+    if (!input.targets.empty()) {
+      (source.channel == static_cast<int>(InputChannel::kChemical)
+           ? chemical_rows
+           : input_rows)
+          .push_back(std::move(input));
+    }
     if (!level.targets.empty()) level_rows.push_back(std::move(level));
     if (!morphogen.targets.empty()) {
       morphogen_rows.push_back(std::move(morphogen));
@@ -161,7 +166,8 @@ Network Network::Build(const Genome& genome, const GrnParams& params) {
   }
 
   net.row_begin_.push_back(0);
-  for (std::vector<Row>* group : {&input_rows, &level_rows, &morphogen_rows}) {
+  for (std::vector<Row>* group :
+       {&input_rows, &chemical_rows, &level_rows, &morphogen_rows}) {
     for (Row& row : *group) {
       net.sources_.push_back({row.kind, row.node});
       net.weight_target_.insert(net.weight_target_.end(), row.targets.begin(),
@@ -171,7 +177,9 @@ Network Network::Build(const Genome& genome, const GrnParams& params) {
       net.row_begin_.push_back(static_cast<int>(net.weight_target_.size()));
     }
   }
-  net.input_source_count_ = static_cast<int>(input_rows.size());
+  net.static_input_source_count_ = static_cast<int>(input_rows.size());
+  net.input_source_count_ =
+      static_cast<int>(input_rows.size() + chemical_rows.size());
   return net;
 }
 

@@ -84,9 +84,10 @@ class Network {
   }
 
   // The dynamics as a sparse weight matrix. Targets are the units and
-  // output nodes, in node order. Sources are the input nodes, then the units
-  // making internal factors, then the units making morphogens, each group
-  // in node order; a source whose weights are all zero is left out.
+  // output nodes, in node order. Sources are the input nodes of the
+  // channels other than CHEMICAL, then the CHEMICAL input nodes, then the
+  // units making internal factors, then the units making morphogens, each
+  // group in node order; a source whose weights are all zero is left out.
   // Source s has weights weight_value[k] onto targets weight_target[k] for
   // k in [row_begin[s], row_begin[s + 1]), targets increasing. Each weight
   // is the sum over the target's regions r (genome order) of the sum over
@@ -98,6 +99,9 @@ class Network {
   const std::vector<double>& weight_value() const { return weight_value_; }
   // Number of leading sources that are input nodes.
   int input_source_count() const { return input_source_count_; }
+  // Number of leading sources that are input nodes of channels other than
+  // CHEMICAL (the inputs that stay constant during motion).
+  int static_input_source_count() const { return static_input_source_count_; }
   // The total weight from source node `from` (as `kind`) onto node `to`,
   // 0 when none (for tests and tools; O(row length)).
   double Weight(SourceKind kind, int from, int to) const;
@@ -129,6 +133,7 @@ class Network {
   std::vector<int> weight_target_;
   std::vector<double> weight_value_;
   int input_source_count_ = 0;
+  int static_input_source_count_ = 0;
   std::vector<std::vector<int>> successors_;
 };
 

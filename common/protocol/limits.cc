@@ -176,8 +176,24 @@ Status ValidateResult(const v1::EvaluationResult& r) {
     return Status::InvalidArgument(ok ? "status OK without a fitness"
                                       : "a fitness without status OK");
   }
-  if (ok && !(std::isfinite(r.fitness()) && r.fitness() >= 0.0)) {
+  // A guidance score (model §10.2) is negative when the animat ends
+  // farther from the sources than it started.
+  const bool guidance = r.source_distances_size() > 0;
+  if (ok && !(std::isfinite(r.fitness()) && (guidance || r.fitness() >= 0.0))) {
     return Status::InvalidArgument("fitness " + ShortestDouble(r.fitness()));
+  }
+  if (guidance && !ok) {
+    return Status::InvalidArgument("source distances without status OK");
+  }
+  if (r.source_distances_size() > kMaxSourceDistances) {
+    return Status::InvalidArgument(std::to_string(r.source_distances_size()) +
+                                   " source distances, more than " +
+                                   std::to_string(kMaxSourceDistances));
+  }
+  for (double d : r.source_distances()) {
+    if (!(std::isfinite(d) && d >= 0.0)) {
+      return Status::InvalidArgument("source distance " + ShortestDouble(d));
+    }
   }
   Status status = CheckString("reason", r.reason(), kMaxReasonBytes);
   if (!status.ok()) return status;

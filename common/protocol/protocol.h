@@ -75,8 +75,13 @@ inline constexpr uint64_t kMaxIndividual = 9223372036854775807u;
 // individuals in one Acknowledge.
 inline constexpr int kMaxBatch = 256;
 inline constexpr int kMaxAcknowledged = 4096;
+// EvaluationResult.source_distances: at most the most guidance trials
+// (GuidanceConfig.trials).
+inline constexpr int kMaxSourceDistances = 64;
 // EvaluationResult: status known and not unspecified; fitness present,
-// finite and >= 0 exactly when the status is OK; cells, steps and the
+// finite and >= 0 (any finite value with source_distances, the guidance
+// score) exactly when the status is OK; source_distances only with OK, at
+// most kMaxSourceDistances, each finite and >= 0; cells, steps and the
 // body's counts >= 0; the body's spreads finite with spread_major >=
 // spread_minor >= 0. WorkResult.wall_seconds finite and >= 0.
 //

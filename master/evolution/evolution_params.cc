@@ -20,10 +20,11 @@ constexpr long long kMaxTournamentSize = 10000;
 // Larger steps could overflow a coordinate to infinity (a Box-Muller
 // deviate is at most 8.6 in magnitude), making the genome invalid.
 constexpr double kMaxCoordinateSigma = 1e6;
-// A random genome of u units has 2u + 10 elements; it must stay within
-// kMaxGenomeElements.
+// A random genome of u units has 2u + 10 elements (2u + 11 with the
+// CHEMICAL input of guidance, checked by RunSettingsFromProto); it must
+// stay within kMaxGenomeElements.
 constexpr long long kMaxInitialUnits =
-    (static_cast<long long>(kMaxGenomeElements) - kInputChannels -
+    (static_cast<long long>(kMaxGenomeElements) - kPaperInputChannels -
      kOutputChannels) /
     2;
 
@@ -134,6 +135,22 @@ Status RunSettingsFromProto(const v1::RunConfig& message,
       EvolutionParamsFromProto(message.evolution(), &s.evolution),
   });
   if (!status.ok()) return status;
+  // Guidance genomes may carry the CHEMICAL channel (docs/model.md §10.2);
+  // without guidance every draw is the paper's.
+  const bool guidance = s.model.guidance.enabled;
+  if (guidance && 2LL * s.evolution.initial_units + kPaperInputChannels +
+                          kOutputChannels + 1 >
+                      static_cast<long long>(kMaxGenomeElements)) {
+    return Status::InvalidArgument(
+        "evolution.initial_units: with model.guidance.enabled a random "
+        "genome has 2 * initial_units + 11 elements, at most " +
+        std::to_string(kMaxGenomeElements) + ": must be at most " +
+        std::to_string((kMaxGenomeElements - 11) / 2) + ", got " +
+        std::to_string(s.evolution.initial_units));
+  }
+  s.evolution.chemical_input = guidance;
+  s.evolution.mutation.input_channels =
+      guidance ? kInputChannels : kPaperInputChannels;
   *settings = s;
   return Status::Ok();
 }

@@ -9,6 +9,7 @@
 #include "animat/v1/evolution.pb.h"
 #include "common/base/status.h"
 #include "common/evaluation/model_config.h"
+#include "common/genome/genome.h"
 
 namespace animat {
 
@@ -21,6 +22,10 @@ struct MutationParams {
   double duplication_rate = 0.05;  // Per genome.
   double deletion_rate = 0.05;     // Per genome.
   int max_run_length = 4;          // Runs of [1, max_run_length] elements.
+  // Channels an S_IN whose type is redrawn may get: the paper's four, or
+  // all five with guidance. Not in MutationConfig: RunSettingsFromProto
+  // sets it from model.guidance.enabled.
+  int input_channels = kPaperInputChannels;
 };
 
 struct EvolutionParams {
@@ -35,6 +40,10 @@ struct EvolutionParams {
   int initial_units = 10;
   double initial_min_fitness = 1e-6;
   int max_elements = 1000;
+  // Initial genomes get a CHEMICAL S_IN (RandomGenome's `chemical`). Not in
+  // EvolutionConfig: RunSettingsFromProto sets it from
+  // model.guidance.enabled.
+  bool chemical_input = false;
 };
 
 // Overwrites the fields present after checking them all; errors name the

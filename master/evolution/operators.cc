@@ -35,7 +35,7 @@ size_t RunLength(RandomStream& stream, int max_run_length, size_t cap) {
   return std::min(length, cap);
 }
 
-void ChangeType(Element& e, RandomStream& stream) {
+void ChangeType(Element& e, int input_channels, RandomStream& stream) {
   // One of the four other types, uniformly.
   const int type = (static_cast<int>(e.type) + 1 +
                     static_cast<int>(stream.Below(kElementTypes - 1))) %
@@ -43,7 +43,8 @@ void ChangeType(Element& e, RandomStream& stream) {
   e.type = static_cast<ElementType>(type);
   switch (e.type) {
     case ElementType::kSIn:
-      e.channel = static_cast<int>(stream.Below(kInputChannels));
+      e.channel =
+          static_cast<int>(stream.Below(static_cast<uint64_t>(input_channels)));
       break;
     case ElementType::kSOut:
       e.channel = static_cast<int>(stream.Below(kOutputChannels));
@@ -122,7 +123,7 @@ Genome Mutate(const Genome& genome, const MutationParams& params,
   // of the changes made.
   for (Element& e : elements) {
     if (stream.NextDouble() < params.type_rate) {
-      ChangeType(e, stream);
+      ChangeType(e, params.input_channels, stream);
       type_changed = true;
     }
     if (stream.NextDouble() < params.sign_rate) {
@@ -204,7 +205,8 @@ Offspring MakeOffspring(uint64_t child, const std::vector<Scored>& ranked,
 
 Genome InitialCandidate(uint64_t index, const EvolutionParams& params) {
   RandomStream stream(params.seed, index, StreamPurpose::kRandomGenome);
-  return RandomGenome(stream, params.initial_units);
+  return RandomGenome(stream, params.initial_units, 10.0,
+                      params.chemical_input);
 }
 
 }  // namespace animat

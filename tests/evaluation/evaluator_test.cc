@@ -328,7 +328,7 @@ TEST(EvaluatorTest, ResultConvertsToProto) {
   ASSERT_TRUE(m.has_fitness());  // A fitness of 0 is still present.
   EXPECT_EQ(m.fitness(), 0.0);
   EXPECT_EQ(EvaluationResultToProto(
-                {EvalStatus::kInvalidGenome, "", {}, 0, 0, 0, {}, {}, {}})
+                {EvalStatus::kInvalidGenome, "", {}, 0, 0, 0, {}, {}, {}, {}})
                 .status(),
             v1::EvaluationResult::INVALID_GENOME);
 }

@@ -55,6 +55,10 @@ TEST(ModelConfigTest, DefaultsAreModelValues) {
   EXPECT_EQ(c.evaluation.check_interval, 100);
   EXPECT_EQ(c.evaluation.fitness, FitnessKind::kDistance);
   EXPECT_EQ(c.evaluation.energy_budget, 10000.0);
+  EXPECT_FALSE(c.guidance.enabled);
+  EXPECT_EQ(c.guidance.trials, 4);
+  EXPECT_EQ(c.guidance.source_distance, 30.0);
+  EXPECT_EQ(c.guidance.decay_length, 10.0);
 }
 
 TEST(ModelConfigTest, AbsentFieldsKeepDefaultsAndPresentOnesOverride) {
@@ -77,6 +81,14 @@ TEST(ModelConfigTest, RoundTripsThroughProto) {
   config.evaluation.fitness = FitnessKind::kDistanceWithinEnergyBudget;
   config.evaluation.energy_budget = 123.5;
   ModelConfig back;
+  ASSERT_TRUE(ConfigFromProto(ConfigToProto(config), &back).ok());
+  EXPECT_EQ(SerializeProto(ConfigToProto(back), ProtoFormat::kText),
+            SerializeProto(ConfigToProto(config), ProtoFormat::kText));
+  config = ModelConfig{};
+  config.guidance.enabled = true;
+  config.guidance.trials = 7;
+  config.guidance.source_distance = 12.5;
+  config.guidance.decay_length = 3.25;
   ASSERT_TRUE(ConfigFromProto(ConfigToProto(config), &back).ok());
   EXPECT_EQ(SerializeProto(ConfigToProto(back), ProtoFormat::kText),
             SerializeProto(ConfigToProto(config), ProtoFormat::kText));
@@ -148,6 +160,38 @@ TEST(ModelConfigTest, RejectsInvalidConstantsNamingTheField) {
   m.mutable_evaluation()->set_fitness(
       static_cast<v1::EvaluationConfig::Fitness>(99));
   ExpectRejected(m, "evaluation.fitness");
+  m.Clear();
+  m.mutable_guidance()->set_trials(0);
+  ExpectRejected(m, "guidance.trials");
+  m.Clear();
+  m.mutable_guidance()->set_trials(kMaxGuidanceTrials + 1);
+  ExpectRejected(m, "guidance.trials");
+  m.Clear();
+  m.mutable_guidance()->set_source_distance(0.0);
+  ExpectRejected(m, "guidance.source_distance");
+  m.Clear();
+  m.mutable_guidance()->set_source_distance(nan);
+  ExpectRejected(m, "guidance.source_distance");
+  m.Clear();
+  m.mutable_guidance()->set_decay_length(-1.0);
+  ExpectRejected(m, "guidance.decay_length");
+  m.Clear();
+  m.mutable_guidance()->set_decay_length(
+      std::numeric_limits<double>::infinity());
+  ExpectRejected(m, "guidance.decay_length");
+}
+
+TEST(ModelConfigTest, GuidanceNeedsTheDistanceFitness) {
+  v1::Config m;
+  m.mutable_guidance()->set_enabled(true);
+  m.mutable_evaluation()->set_fitness(
+      v1::EvaluationConfig::DISTANCE_WITHIN_ENERGY_BUDGET);
+  ExpectRejected(m, "guidance.enabled");
+  m.mutable_evaluation()->set_fitness(v1::EvaluationConfig::DISTANCE);
+  ModelConfig config;
+  ASSERT_TRUE(ConfigFromProto(m, &config).ok());
+  EXPECT_TRUE(config.guidance.enabled);
+  EXPECT_EQ(config.guidance.trials, 4);
 }
 
 TEST(ModelConfigTest, ReadConfigFileNamesTheFileAndField) {

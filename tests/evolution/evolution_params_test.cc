@@ -271,6 +271,28 @@ TEST(RunSettingsTest, ReadRunConfigFileNamesTheFileAndField) {
   EXPECT_FALSE(ReadRunConfigFile(::testing::TempDir() + "/missing.txtpb").ok());
 }
 
+// Guidance (docs/model.md §10.2) lets the run's genomes carry the CHEMICAL
+// channel; without it every draw is the paper's.
+TEST(RunSettingsTest, GuidanceEnablesTheChemicalChannel) {
+  RunSettings paper;
+  ASSERT_TRUE(RunSettingsFromProto(v1::RunConfig(), &paper).ok());
+  EXPECT_FALSE(paper.evolution.chemical_input);
+  EXPECT_EQ(paper.evolution.mutation.input_channels, kPaperInputChannels);
+  v1::RunConfig m;
+  m.mutable_model()->mutable_guidance()->set_enabled(true);
+  RunSettings guided;
+  ASSERT_TRUE(RunSettingsFromProto(m, &guided).ok());
+  EXPECT_TRUE(guided.evolution.chemical_input);
+  EXPECT_EQ(guided.evolution.mutation.input_channels, kInputChannels);
+  // One more element: 2 * 4995 + 11 is beyond the genome limit.
+  m.mutable_evolution()->set_initial_units(4995);
+  const Status status = RunSettingsFromProto(m, &guided);
+  EXPECT_EQ(status.message().rfind("evolution.initial_units:", 0), 0u)
+      << status.message();
+  m.mutable_evolution()->set_initial_units(4994);
+  EXPECT_TRUE(RunSettingsFromProto(m, &guided).ok());
+}
+
 TEST(PaperConfigTest, ReadsAsThePapersSetup) {
   Result<RunSettings> settings =
       ReadRunConfigFile(ConfigsDir() + "/paper.txtpb");

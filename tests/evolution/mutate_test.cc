@@ -170,7 +170,8 @@ TEST(MutateTest, TypeRateOneRedrawsEveryTypeAmongTheOtherFour) {
   p.type_rate = 1.0;
   // new_type[old][new], and channels drawn for new S elements.
   std::vector<std::vector<int64_t>> transitions(5, std::vector<int64_t>(5, 0));
-  std::vector<int64_t> inputs(kInputChannels, 0), outputs(kOutputChannels, 0);
+  std::vector<int64_t> inputs(kPaperInputChannels, 0),
+      outputs(kOutputChannels, 0);
   for (uint64_t i = 0; i < 250; ++i) {
     const Genome parent = RandomParent(i);
     const Mutated m = MutateWith(parent, p, i);
@@ -202,14 +203,35 @@ TEST(MutateTest, TypeRateOneRedrawsEveryTypeAmongTheOtherFour) {
               testing::ChiSquareBound(4))
         << "from type " << from;
   }
-  EXPECT_LT(
-      testing::ChiSquare(
-          inputs, std::vector<double>(kInputChannels, 1.0 / kInputChannels)),
-      testing::ChiSquareBound(kInputChannels));
+  EXPECT_LT(testing::ChiSquare(inputs,
+                               std::vector<double>(kPaperInputChannels,
+                                                   1.0 / kPaperInputChannels)),
+            testing::ChiSquareBound(kPaperInputChannels));
   EXPECT_LT(
       testing::ChiSquare(
           outputs, std::vector<double>(kOutputChannels, 1.0 / kOutputChannels)),
       testing::ChiSquareBound(kOutputChannels));
+}
+
+// A guidance run's mutations draw among all five input channels; the
+// paper's (above) never draw CHEMICAL.
+TEST(MutateTest, GuidanceRedrawsAmongFiveInputChannels) {
+  MutationParams p = NoMutation();
+  p.type_rate = 1.0;
+  p.input_channels = kInputChannels;
+  std::vector<int64_t> inputs(kInputChannels, 0);
+  for (uint64_t i = 0; i < 250; ++i) {
+    const Mutated m = MutateWith(RandomParent(i), p, i);
+    ASSERT_TRUE(ValidateGenome(m.genome).ok());
+    for (const Element& e : m.genome.elements) {
+      if (e.type == ElementType::kSIn) ++inputs[e.channel];
+    }
+  }
+  EXPECT_GT(inputs[static_cast<int>(InputChannel::kChemical)], 0);
+  EXPECT_LT(
+      testing::ChiSquare(
+          inputs, std::vector<double>(kInputChannels, 1.0 / kInputChannels)),
+      testing::ChiSquareBound(kInputChannels));
 }
 
 TEST(MutateTest, SignRateOneFlipsEverySignAndNothingElse) {

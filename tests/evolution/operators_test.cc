@@ -317,9 +317,9 @@ TEST(InitialCandidateTest, IsTheRandomGenomeOfItsStream) {
       const Genome expected = RandomGenome(stream, units);
       const Genome candidate = InitialCandidate(index, params);
       EXPECT_EQ(candidate, expected);
-      EXPECT_EQ(
-          candidate.elements.size(),
-          static_cast<size_t>(2 * units + kInputChannels + kOutputChannels));
+      EXPECT_EQ(candidate.elements.size(),
+                static_cast<size_t>(2 * units + kPaperInputChannels +
+                                    kOutputChannels));
       EXPECT_TRUE(ValidateGenome(candidate).ok());
     }
   }

@@ -125,7 +125,7 @@ TEST(GenomeProtoTest, ConvertsFieldsToTheirGenomeValues) {
   EXPECT_EQ(e[0], (Element{ElementType::kP, 1, 0.5, 9.75, -1}));
   EXPECT_EQ(e[1], (Element{ElementType::kGInternal, -1, 1e-300, -3.25, -1}));
   EXPECT_EQ(e[2], (Element{ElementType::kGMorphogen, 1, 123.456, 0.0, -1}));
-  for (int c = 0; c < kInputChannels; ++c) {
+  for (int c = 0; c < kPaperInputChannels; ++c) {
     EXPECT_EQ(e[3 + c].type, ElementType::kSIn);
     EXPECT_EQ(e[3 + c].channel, c);
   }
@@ -244,9 +244,9 @@ TEST(GenomeProtoTest, RejectsUnknownEnumNumbers) {
 
   message = OneElement(v1::Element::S_OUT, 1, v1::Element::CHANNEL_NONE);
   message.mutable_elements(0)->set_channel(
-      static_cast<v1::Element::Channel>(11));
+      static_cast<v1::Element::Channel>(12));
   EXPECT_TRUE(
-      IsError(ErrorAtIndexOne(message), "elements[1].channel:", {"got 11"}));
+      IsError(ErrorAtIndexOne(message), "elements[1].channel:", {"got 12"}));
 }
 
 TEST(GenomeProtoTest, AcceptsGenomeAtTheSizeLimit) {
@@ -295,6 +295,25 @@ TEST(ValidateGenomeTest, NamesElementOfNonFiniteCoordinate) {
   EXPECT_TRUE(IsError(ValidateGenome(genome), "elements[3]", {"finite"}));
 }
 
+// CHEMICAL (docs/model.md §10.2) is proto channel 11, after the outputs,
+// and input channel 4; an output element cannot have it.
+TEST(GenomeProtoTest, ChemicalInputRoundTrips) {
+  v1::Genome message;
+  v1::Element* e = message.add_elements();
+  e->set_type(v1::Element::S_IN);
+  e->set_sign(1);
+  e->set_x(1.5);
+  e->set_channel(v1::Element::CHEMICAL);
+  Result<Genome> genome = GenomeFromProto(message);
+  ASSERT_TRUE(genome.ok()) << genome.status().ToString();
+  EXPECT_EQ(genome->elements[0].channel,
+            static_cast<int>(InputChannel::kChemical));
+  EXPECT_EQ(GenomeToProto(*genome).SerializeAsString(),
+            message.SerializeAsString());
+  e->set_type(v1::Element::S_OUT);
+  EXPECT_FALSE(GenomeFromProto(message).ok());
+}
+
 TEST(ValidateGenomeTest, RejectsChannelOutOfRange) {
   Genome genome = ValidGenome();
   genome.elements[2].channel = kInputChannels;
@@ -331,7 +350,10 @@ TEST(GenomeNamesTest, NameEveryTypeAndChannel) {
   EXPECT_STREQ(ElementTypeName(ElementType::kSIn), "S_IN");
   EXPECT_STREQ(ElementTypeName(ElementType::kSOut), "S_OUT");
   // The names match the proto's enum names.
-  for (int c = 0; c < kInputChannels; ++c) {
+  EXPECT_STREQ(InputChannelName(static_cast<int>(InputChannel::kChemical)),
+               "CHEMICAL");
+  EXPECT_EQ(v1::Element::Channel_Name(v1::Element::CHEMICAL), "CHEMICAL");
+  for (int c = 0; c < kPaperInputChannels; ++c) {
     EXPECT_EQ(InputChannelName(c),
               v1::Element::Channel_Name(static_cast<v1::Element::Channel>(
                   v1::Element::MATERNAL_0 + c)));

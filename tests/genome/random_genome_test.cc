@@ -1,8 +1,10 @@
 #include "common/genome/random_genome.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <initializer_list>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -27,13 +29,13 @@ int Count(const Genome& genome, ElementType type) {
 // immediately followed by one G element, and one S element per channel.
 ::testing::AssertionResult HasInitialStructure(const Genome& genome,
                                                int units) {
-  const int s_elements = kInputChannels + kOutputChannels;
+  const int s_elements = kPaperInputChannels + kOutputChannels;
   if (genome.elements.size() != static_cast<size_t>(2 * units + s_elements)) {
     return ::testing::AssertionFailure()
            << genome.elements.size() << " elements, want "
            << 2 * units + s_elements;
   }
-  std::array<int, kInputChannels> inputs{};
+  std::array<int, kPaperInputChannels> inputs{};
   std::array<int, kOutputChannels> outputs{};
   int p = 0;
   int g = 0;
@@ -56,7 +58,7 @@ int Count(const Genome& genome, ElementType type) {
         }
         break;
       case ElementType::kSIn:
-        if (e.channel < 0 || e.channel >= kInputChannels) {
+        if (e.channel < 0 || e.channel >= kPaperInputChannels) {
           return ::testing::AssertionFailure()
                  << "S_IN at " << i << " has channel " << e.channel;
         }
@@ -77,7 +79,7 @@ int Count(const Genome& genome, ElementType type) {
     return ::testing::AssertionFailure()
            << p << " P and " << g << " G elements, want " << units << " each";
   }
-  for (int c = 0; c < kInputChannels; ++c) {
+  for (int c = 0; c < kPaperInputChannels; ++c) {
     if (inputs[static_cast<size_t>(c)] != 1) {
       return ::testing::AssertionFailure()
              << inputs[static_cast<size_t>(c)] << " S_IN of channel "
@@ -99,7 +101,7 @@ TEST(RandomGenomeTest, HasTenUnitsAndOneSElementPerChannel) {
     const Genome genome = Random(1, individual);
     EXPECT_EQ(genome.elements.size(), 30u);
     EXPECT_EQ(Count(genome, ElementType::kP), 10);
-    EXPECT_EQ(Count(genome, ElementType::kSIn), kInputChannels);
+    EXPECT_EQ(Count(genome, ElementType::kSIn), kPaperInputChannels);
     EXPECT_EQ(Count(genome, ElementType::kSOut), kOutputChannels);
     EXPECT_TRUE(HasInitialStructure(genome, 10)) << "individual " << individual;
   }
@@ -201,7 +203,7 @@ TEST(RandomGenomeTest, DifferentKeysGiveDifferentGenomes) {
 TEST(RandomGenomeTest, ZeroUnitsGivesOnlyTheSElements) {
   const Genome genome = Random(10, 0, 0);
   EXPECT_EQ(genome.elements.size(),
-            static_cast<size_t>(kInputChannels + kOutputChannels));
+            static_cast<size_t>(kPaperInputChannels + kOutputChannels));
   EXPECT_TRUE(HasInitialStructure(genome, 0));
   EXPECT_TRUE(ValidateGenome(genome).ok());
 }
@@ -210,6 +212,56 @@ TEST(RandomGenomeTest, OtherUnitCountsKeepTheStructure) {
   for (int units : {1, 3, 40}) {
     EXPECT_TRUE(HasInitialStructure(Random(11, 0, units), units))
         << units << " units";
+  }
+}
+
+// With guidance, the paper's genome from the same stream plus one CHEMICAL
+// S_IN, inserted between units and S elements (docs/model.md §10.2).
+TEST(RandomGenomeTest, ChemicalAddsOneInputToThePaperGenome) {
+  int at_start = 0, at_end = 0;
+  std::vector<int> positions;
+  for (uint64_t individual = 0; individual < 200; ++individual) {
+    RandomStream stream(12, individual, StreamPurpose::kRandomGenome);
+    const Genome genome = RandomGenome(stream, 10, 10.0, /*chemical=*/true);
+    ASSERT_TRUE(ValidateGenome(genome).ok());
+    const Genome paper = Random(12, individual);
+    ASSERT_EQ(genome.elements.size(), paper.elements.size() + 1);
+    int chemical = -1;
+    for (size_t k = 0; k < genome.elements.size(); ++k) {
+      const Element& e = genome.elements[k];
+      if (e.type == ElementType::kSIn &&
+          e.channel == static_cast<int>(InputChannel::kChemical)) {
+        ASSERT_EQ(chemical, -1) << "two CHEMICAL elements";
+        chemical = static_cast<int>(k);
+      }
+    }
+    ASSERT_GE(chemical, 0);
+    Genome without = genome;
+    without.elements.erase(without.elements.begin() + chemical);
+    EXPECT_EQ(without, paper);
+    // Never between a unit's P and its G.
+    if (chemical > 0) {
+      EXPECT_NE(genome.elements[chemical - 1].type, ElementType::kP);
+    }
+    const Element& e = genome.elements[chemical];
+    EXPECT_TRUE(e.x >= 0.0 && e.x < 10.0 && e.y >= 0.0 && e.y < 10.0);
+    at_start += chemical == 0;
+    at_end += chemical == static_cast<int>(paper.elements.size());
+    positions.push_back(chemical);
+  }
+  std::sort(positions.begin(), positions.end());
+  positions.erase(std::unique(positions.begin(), positions.end()),
+                  positions.end());
+  EXPECT_GT(positions.size(), 10u);  // Anywhere, not one fixed place.
+  EXPECT_GT(at_start + at_end, 0);   // 2 of 21 boundaries: about 19 of 200.
+}
+
+TEST(RandomGenomeTest, WithoutChemicalNoElementHasTheChemicalChannel) {
+  for (uint64_t individual = 0; individual < 50; ++individual) {
+    for (const Element& e : Random(13, individual).elements) {
+      EXPECT_FALSE(e.type == ElementType::kSIn &&
+                   e.channel == static_cast<int>(InputChannel::kChemical));
+    }
   }
 }
 

@@ -69,6 +69,38 @@ TEST(ValidateResultTest, AcceptsWhatAnEvaluationReports) {
   EXPECT_TRUE(status.ok()) << status.ToString();
 }
 
+// A guidance result (docs/model.md §10.2): its fitness may be negative,
+// and its per-trial distances are bounded, finite and >= 0.
+TEST(ValidateResultTest, GuidanceResultsMayScoreBelowZero) {
+  static_assert(protocol::kMaxSourceDistances >= kMaxGuidanceTrials);
+  v1::EvaluationResult r = OkWithBody();
+  r.set_fitness(-2.5);
+  EXPECT_EQ(Refusal(r), "fitness -2.5");  // Not a guidance result.
+  r.add_source_distances(31.0);
+  r.add_source_distances(34.0);
+  EXPECT_TRUE(protocol::ValidateResult(r).ok());
+  r.set_source_distances(1, -1.0);
+  EXPECT_EQ(Refusal(r), "source distance -1");
+  {
+    testing::FpTrapsOff traps_off;
+    r.set_source_distances(1, std::numeric_limits<double>::quiet_NaN());
+    EXPECT_EQ(Refusal(r).rfind("source distance ", 0), 0u);
+    r.set_fitness(std::numeric_limits<double>::infinity());
+    r.set_source_distances(1, 34.0);
+    EXPECT_EQ(Refusal(r).rfind("fitness ", 0), 0u);
+  }
+  r.set_fitness(1.0);
+  r.clear_source_distances();
+  for (int k = 0; k <= protocol::kMaxSourceDistances; ++k) {
+    r.add_source_distances(30.0);
+  }
+  EXPECT_NE(Refusal(r).find("more than 64"), std::string::npos);
+  v1::EvaluationResult failed;
+  failed.set_status(v1::EvaluationResult::NUMERICAL_FAILURE);
+  failed.add_source_distances(30.0);
+  EXPECT_EQ(Refusal(failed), "source distances without status OK");
+}
+
 TEST(ValidateResultTest, RefusesNegativeCountsNamingThem) {
   v1::EvaluationResult r = OkWithBody();
   r.mutable_body()->set_cells(-1);
