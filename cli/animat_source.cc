@@ -67,7 +67,9 @@ Result<ModelConfig> RunModelConfig(const std::string& db,
   return Status::NotFound(db + ": no run " + std::to_string(*run_id));
 }
 
-Result<v1::Trace> LoadAnimatTrace(const AnimatSource& source) {
+namespace {
+
+Status CheckOneSource(const AnimatSource& source) {
   const int given = (source.genome.empty() ? 0 : 1) +
                     (source.db.empty() ? 0 : 1) +
                     (source.trace.empty() ? 0 : 1);
@@ -76,18 +78,17 @@ Result<v1::Trace> LoadAnimatTrace(const AnimatSource& source) {
         "give exactly one of --genome FILE, --db FILE --individual ID, "
         "--trace FILE");
   }
-  if (!source.trace.empty()) {
-    v1::Trace trace;
-    Status status = ReadProtoFile(source.trace, &trace);
-    if (!status.ok()) return status;
-    return trace;
-  }
+  return Status::Ok();
+}
+
+// --genome or --db: the genome and its configuration.
+Result<AnimatModel> LoadStoredModel(const AnimatSource& source) {
   if (!source.genome.empty()) {
     Result<Genome> genome = LoadGenome(source.genome);
     if (!genome.ok()) return genome.status();
     Result<ModelConfig> config = LoadConfig(source.config);
     if (!config.ok()) return config.status();
-    return Simulate(*genome, *config, source.every);
+    return AnimatModel{std::move(genome).value(), *config};
   }
   if (!source.individual) {
     return Status::InvalidArgument("--db needs --individual ID");
@@ -109,7 +110,39 @@ Result<v1::Trace> LoadAnimatTrace(const AnimatSource& source) {
     return genome.status().WithPrefix(source.db + ": individual " +
                                       std::to_string(*source.individual));
   }
-  return Simulate(*genome, *config, source.every);
+  return AnimatModel{std::move(genome).value(), *config};
+}
+
+}  // namespace
+
+Result<AnimatModel> LoadAnimatModel(const AnimatSource& source) {
+  Status status = CheckOneSource(source);
+  if (!status.ok()) return status;
+  if (source.trace.empty()) return LoadStoredModel(source);
+  v1::Trace trace;
+  status = ReadProtoFile(source.trace, &trace);
+  if (!status.ok()) return status;
+  AnimatModel model;
+  status = ConfigFromProto(trace.config(), &model.config);
+  if (!status.ok()) return status.WithPrefix(source.trace);
+  Result<Genome> genome = GenomeFromProto(trace.genome());
+  if (!genome.ok()) return genome.status().WithPrefix(source.trace);
+  model.genome = std::move(genome).value();
+  return model;
+}
+
+Result<v1::Trace> LoadAnimatTrace(const AnimatSource& source) {
+  Status status = CheckOneSource(source);
+  if (!status.ok()) return status;
+  if (!source.trace.empty()) {
+    v1::Trace trace;
+    status = ReadProtoFile(source.trace, &trace);
+    if (!status.ok()) return status;
+    return trace;
+  }
+  Result<AnimatModel> model = LoadStoredModel(source);
+  if (!model.ok()) return model.status();
+  return Simulate(model->genome, model->config, source.every);
 }
 
 }  // namespace animat::cli

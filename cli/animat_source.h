@@ -13,6 +13,7 @@
 #include "animat/v1/trace.pb.h"
 #include "common/base/status.h"
 #include "common/evaluation/model_config.h"
+#include "common/genome/genome.h"
 
 namespace animat::cli {
 
@@ -36,6 +37,15 @@ void AddAnimatSourceOptions(CLI::App* sub, AnimatSource* source);
 // store or individual; exactly one of --genome, --db and --trace must be
 // given.
 Result<v1::Trace> LoadAnimatTrace(const AnimatSource& source);
+
+// The chosen animat's genome and model configuration, without simulating:
+// from --genome and --config, the store's individual and run (or
+// --config), or what a --trace records. Errors as LoadAnimatTrace's.
+struct AnimatModel {
+  Genome genome;
+  ModelConfig config;
+};
+Result<AnimatModel> LoadAnimatModel(const AnimatSource& source);
 
 // The model configuration a lineage store's run used.
 Result<ModelConfig> RunModelConfig(const std::string& db,

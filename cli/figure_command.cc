@@ -1,14 +1,17 @@
-// animat figure strip|activity|cells|fitness|contact-sheet ... -o FILE.svg
+// animat figure strip|activity|cells|guidance|fitness|contact-sheet ...
+//   -o FILE.svg
 //
 // The paper's Fig. 4 panels for one animat (snapshot strip, activity along
-// the body axes, expansion and contraction of chosen cells) and two
-// figures of an evolution (fitness over generations, a contact sheet of
-// the best every N generations); docs/analysis.md.
+// the body axes, expansion and contraction of chosen cells), the trials of
+// one animat under active guidance, and two figures of an evolution
+// (fitness over generations, a contact sheet of the best every N
+// generations); docs/analysis.md.
 #include <algorithm>
 #include <cstdio>
 #include <map>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -22,6 +25,7 @@
 #include "common/svg/svg.h"
 #include "figures/analysis_plots.h"
 #include "figures/contact_sheet.h"
+#include "figures/guidance_plot.h"
 #include "figures/line_plot.h"
 #include "figures/snapshot_strip.h"
 #include "master/lineage/queries.h"
@@ -114,6 +118,72 @@ int Cells(const Options& o) {
                          figures::DefaultStepRange(a->analysis, o.cycles));
   if (!plot.ok()) return Fail(plot.status().message());
   return WriteAnimatFigure(o, *a, figures::LinePlotSvg(*plot));
+}
+
+// Records the centre of mass of every guidance trial, every `every`-th
+// motion step and the last.
+class TrialPaths : public EvaluationObserver {
+ public:
+  TrialPaths(int every, int last) : every_(every), last_(last) {}
+  void OnGuidanceTrial(int trial, std::span<const Vec2> sources) override {
+    trial_ = trial;
+    if (picture_.trials.empty()) {
+      for (const Vec2& s : sources) picture_.trials.push_back({s, {}, ""});
+    }
+  }
+  void OnMotionStep(MotionPhase phase, int step, const MotionState& state,
+                    std::span<const double>, std::span<const double>) override {
+    if (phase != MotionPhase::kMotion || trial_ < 0) return;
+    if (step == 0) picture_.start = CentreOfMass(state);
+    if (step % every_ == 0 || step == last_) {
+      picture_.trials[trial_].path.push_back(CentreOfMass(state));
+    }
+  }
+  figures::GuidancePicture& picture() { return picture_; }
+
+ private:
+  int every_, last_;
+  int trial_ = -1;
+  figures::GuidancePicture picture_;
+};
+
+int Guidance(const Options& o) {
+  Result<AnimatModel> model = LoadAnimatModel(o.source);
+  if (!model.ok()) return Fail(model.status().message());
+  const ModelConfig& config = model->config;
+  if (!config.guidance.enabled) {
+    return Fail(
+        "figure guidance needs a configuration with guidance { enabled: "
+        "true } (docs/model.md §10.2)");
+  }
+  TrialPaths paths(o.source.every, config.evaluation.motion_steps);
+  EvaluateOptions options;
+  options.observed_trial = EvaluateOptions::kAllTrials;
+  const EvaluationResult result =
+      Evaluate(model->genome, config, &paths, options);
+  figures::GuidancePicture& picture = paths.picture();
+  if (picture.trials.empty()) {
+    return Fail(std::string("no trial ran: ") + EvalStatusName(result.status) +
+                (result.reason.empty() ? "" : " (" + result.reason + ")"));
+  }
+  picture.decay_length = config.guidance.decay_length;
+  picture.title =
+      "Guidance trials: " + std::string(EvalStatusName(result.status)) +
+      (result.fitness ? ", fitness " + svg::Number(*result.fitness, 3)
+                      : " (" + result.reason + ")");
+  for (size_t k = 0; k < picture.trials.size(); ++k) {
+    figures::GuidanceTrialPath& t = picture.trials[k];
+    t.caption = "trial " + std::to_string(k);
+    if (k < result.source_distances.size()) {
+      t.caption += ": ends " + svg::Number(result.source_distances[k], 2) +
+                   " radii from its source (" +
+                   svg::Number(config.guidance.source_distance, 2) +
+                   " at the start)";
+    }
+  }
+  if (Write(o.output, figures::GuidanceSvg(picture)) != 0) return 1;
+  std::printf("trials: %zu\n", picture.trials.size());
+  return 0;
 }
 
 struct StoreRun {
@@ -284,6 +354,13 @@ Command AddFigureCommand(CLI::App& app) {
         ->check(CLI::Range(0.0, 1000.0))
         ->capture_default_str();
   }
+  CLI::App* guidance = figure->add_subcommand(
+      "guidance",
+      "The centre of mass in every guidance trial around its chemical "
+      "source (docs/model.md §10.2; the configuration must enable "
+      "guidance)");
+  AddAnimatSourceOptions(guidance, &o->source);
+  output(guidance);
   CLI::App* fitness = figure->add_subcommand(
       "fitness", "Best, mean and median fitness over generations");
   fitness
@@ -307,12 +384,13 @@ Command AddFigureCommand(CLI::App& app) {
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
   output(sheet);
-  return [o, strip, activity, cells, fitness] {
+  return [o, strip, activity, cells, guidance, fitness] {
     Status path = CheckSvgPath(o->output);
     if (!path.ok()) return Fail(path.message());
     if (strip->parsed()) return Strip(*o);
     if (activity->parsed()) return Activity(*o);
     if (cells->parsed()) return Cells(*o);
+    if (guidance->parsed()) return Guidance(*o);
     if (fitness->parsed()) return Fitness(*o);
     return ContactSheet(*o);
   };

@@ -1,4 +1,5 @@
 // animat simulate --genome FILE [--config FILE] [--trace FILE] [--every K]
+//                 [--trial K]
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -21,6 +22,7 @@ struct Options {
   std::string config;
   std::string trace;
   int every = 10;
+  int trial = 0;
   bool json = false;
 };
 
@@ -47,6 +49,13 @@ std::vector<Field> ResultFields(const EvaluationResult& r) {
   fields.push_back({"steps", std::to_string(r.steps)});
   if (r.state_hash != 0) {
     fields.push_back({"state_hash", lineage::Hex64(r.state_hash), true});
+  }
+  if (!r.source_distances.empty()) {
+    std::string list = "[";
+    for (size_t k = 0; k < r.source_distances.size(); ++k) {
+      list += (k > 0 ? ", " : "") + Exact(r.source_distances[k]);
+    }
+    fields.push_back({"source_distances", list + "]"});
   }
   if (r.body) {
     fields.push_back({"springs", std::to_string(r.body->springs)});
@@ -103,11 +112,25 @@ int Run(const Options& o) {
     if (!format.ok()) return Fail(format.status().message());
   }
 
+  if (o.trial != 0 &&
+      (!config->guidance.enabled || o.trial >= config->guidance.trials)) {
+    return Fail("--trial " + std::to_string(o.trial) +
+                (config->guidance.enabled
+                     ? ": the configuration has " +
+                           std::to_string(config->guidance.trials) +
+                           " guidance trials (0 to " +
+                           std::to_string(config->guidance.trials - 1) + ")"
+                     : ": guidance is off in the configuration (one motion)"));
+  }
+
   std::unique_ptr<TraceRecorder> recorder;
   if (!o.trace.empty()) {
     recorder = std::make_unique<TraceRecorder>(*config, o.every);
   }
-  const EvaluationResult result = Evaluate(*genome, *config, recorder.get());
+  EvaluateOptions options;
+  options.observed_trial = o.trial;
+  const EvaluationResult result =
+      Evaluate(*genome, *config, recorder.get(), options);
 
   if (recorder) {
     v1::Trace& trace = recorder->trace();
@@ -140,6 +163,11 @@ Command AddSimulateCommand(CLI::App& app) {
                   "Trace every K-th development and motion step (first and "
                   "last always)")
       ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  sub->add_option("--trial", options->trial,
+                  "With guidance (docs/model.md §10.2): the trial whose "
+                  "motion the trace records")
+      ->check(CLI::Range(0, kMaxGuidanceTrials - 1))
       ->capture_default_str();
   sub->add_flag("--json", options->json,
                 "Print the result as one JSON object: the same keys and "

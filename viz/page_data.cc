@@ -216,6 +216,43 @@ void AppendResult(const v1::EvaluationResult& result, std::string* out) {
               ",\"steps\":" + std::to_string(result.steps()) + "}");
 }
 
+// With guidance (docs/model.md §10.2): "guidance":{"trial":k,
+// "decay_length":l,"sources":[x0,y0,x1,y1,...]}, exact values.
+Status AppendGuidance(const v1::GuidanceTrace& g, std::string* out) {
+  const int sources = g.source_x_size();
+  if (g.source_y_size() != sources || sources == 0) {
+    return Status::InvalidArgument("guidance: source_x and source_y have " +
+                                   std::to_string(sources) + " and " +
+                                   std::to_string(g.source_y_size()) +
+                                   " values (one per trial, at least one)");
+  }
+  if (g.trial() < 0 || g.trial() >= sources) {
+    return Status::InvalidArgument("guidance: trial " +
+                                   std::to_string(g.trial()) + " of " +
+                                   std::to_string(sources) + " sources");
+  }
+  if (!(std::isfinite(g.decay_length()) && g.decay_length() > 0)) {
+    return Status::InvalidArgument(
+        "guidance: decay_length must be finite and > 0");
+  }
+  out->append(",\"guidance\":{\"trial\":" + std::to_string(g.trial()) +
+              ",\"decay_length\":");
+  AppendExact(g.decay_length(), out);
+  out->append(",\"sources\":[");
+  for (int k = 0; k < sources; ++k) {
+    if (!std::isfinite(g.source_x(k)) || !std::isfinite(g.source_y(k))) {
+      return Status::InvalidArgument("guidance: " + Where("sources", k) +
+                                     " is not finite");
+    }
+    if (k > 0) out->push_back(',');
+    AppendExact(g.source_x(k), out);
+    out->push_back(',');
+    AppendExact(g.source_y(k), out);
+  }
+  out->append("]}");
+  return Status::Ok();
+}
+
 }  // namespace
 
 Result<std::string> PageDataJson(const v1::Trace& trace,
@@ -250,6 +287,10 @@ Result<std::string> PageDataJson(const v1::Trace& trace,
   out.append(",");
   status = AppendEdges("skin", trace.body().skin(), body_nodes, &out);
   if (!status.ok()) return status;
+  if (trace.has_guidance()) {
+    status = AppendGuidance(trace.guidance(), &out);
+    if (!status.ok()) return status;
+  }
 
   out.append(",\"frames\":[");
   bool first = true;

@@ -1,6 +1,7 @@
 // The data a replay page shows, taken from a trace (animat.v1.Trace) and
 // written as JSON: development snapshots, then equilibration and motion
-// frames, the springs and skin, each node's actuation and the result.
+// frames, the springs and skin, each node's actuation, the result, and with
+// guidance the chemical sources and the recorded trial.
 // docs/formats.md ("animat render") describes the JSON.
 //
 // Pure functions; thread-safe.
@@ -30,8 +31,10 @@ struct PageOptions {
 // show (no snapshot and no frame: the message gives the result's status
 // and reason), when arrays of one snapshot or frame disagree in length,
 // a frame's node count differs from the body's, a spring or skin edge names
-// a node the body lacks, a frame's phase is unspecified, or steps do not
-// increase within a phase.
+// a node the body lacks, a frame's phase is unspecified, steps do not
+// increase within a phase, or the guidance part has no source, sources of
+// unequal lengths or not finite, a trial out of range or a decay length
+// that is not finite and > 0.
 Result<std::string> PageDataJson(const v1::Trace& trace,
                                  const PageOptions& options);
 

@@ -42,6 +42,17 @@ void TraceRecorder::OnBody(const Body& body, std::span<const double> expand,
   *trace_.mutable_body() = BodyToProto(body, expand, contract);
 }
 
+void TraceRecorder::OnGuidanceTrial(int trial, std::span<const Vec2> sources) {
+  v1::GuidanceTrace* g = trace_.mutable_guidance();
+  g->Clear();
+  g->set_trial(trial);
+  for (const Vec2& s : sources) {
+    g->add_source_x(s.x);
+    g->add_source_y(s.y);
+  }
+  g->set_decay_length(config_.guidance.decay_length);
+}
+
 void TraceRecorder::OnMotionStep(MotionPhase phase, int step,
                                  const MotionState& state,
                                  std::span<const double> expand,

@@ -1,6 +1,7 @@
 // Records an evaluation as an animat.v1.Trace (docs/formats.md): every
 // `every`-th development step and motion step, always the first and last
-// of each phase, and the body.
+// of each phase, and the body; with guidance, the sources and the observed
+// trial (observe one trial: EvaluateOptions::observed_trial).
 //
 // Not thread-safe; one recorder per evaluation.
 #ifndef ANIMAT_COMMON_EVALUATION_TRACE_RECORDER_H_
@@ -25,6 +26,7 @@ class TraceRecorder : public EvaluationObserver {
   void OnDevelopmentStep(int step, const Embryo& embryo) override;
   void OnBody(const Body& body, std::span<const double> expand,
               std::span<const double> contract) override;
+  void OnGuidanceTrial(int trial, std::span<const Vec2> sources) override;
   void OnMotionStep(MotionPhase phase, int step, const MotionState& state,
                     std::span<const double> expand,
                     std::span<const double> contract) override;

@@ -353,5 +353,44 @@ TEST_F(BrowserTest, PlayingAdvancesFramesAndTheCounterFollows) {
   EXPECT_EQ(shown.step, std::to_string(step));
 }
 
+// With guidance (docs/model.md §10.2) the page draws every source, the
+// recorded trial's filled, and the gradient's discs around it.
+TEST_F(BrowserTest, GuidanceShowsTheSourcesAndTheGradient) {
+  const std::string config = (dir_ / "guidance.txtpb").string();
+  ASSERT_TRUE(WriteFile(config,
+                        "evaluation { equilibration_steps: 40 "
+                        "motion_steps: 200 }\nguidance { enabled: true }\n")
+                  .ok());
+  const std::string animat = std::string(ANIMAT_BIN_DIR) + "/animat";
+  const std::string trace = (dir_ / "guidance.binpb").string();
+  const Outcome simulated =
+      Shell(animat + " simulate --genome " +
+            testing::TestData("genomes/seed-1198.json") + " --config " +
+            config + " --every 20 --trial 3 --trace " + trace + " 2>&1");
+  ASSERT_EQ(simulated.exit_code, 0) << simulated.output;
+  const Outcome rendered =
+      Shell(animat + " render --trace " + trace + " -o " + page_ + " 2>&1");
+  ASSERT_EQ(rendered.exit_code, 0) << rendered.output;
+  const Outcome run =
+      Shell(Chromium("--window-size=1000,700 --dump-dom", "frame=30", 500));
+  ASSERT_EQ(run.exit_code, 0);
+  const std::string& dom = run.output;
+  auto circles = [&](const std::string& group) {
+    std::vector<std::string> classes;
+    const size_t begin = dom.find("<g id=\"" + group + "\">");
+    EXPECT_NE(begin, std::string::npos) << group;
+    const size_t end = dom.find("</g>", begin);
+    for (size_t at = dom.find("<circle", begin); at < end;
+         at = dom.find("<circle", at + 1)) {
+      classes.push_back(Attribute(StartTag(dom, "<circle", at), "class"));
+    }
+    return classes;
+  };
+  EXPECT_EQ(circles("sources"),
+            (std::vector<std::string>{"", "", "", "active"}));
+  EXPECT_EQ(circles("gradient").size(), 3u);
+  EXPECT_NE(dom.find("trial 3 (0 to 3)"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace animat

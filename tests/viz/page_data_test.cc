@@ -6,6 +6,7 @@
 
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "tests/test_util.h"
 #include "tests/viz/trace_builder.h"
@@ -187,6 +188,57 @@ TEST(PageDataTest, LateDivisionShowsItsDevelopment) {
   const Struct data = Data(trace);
   EXPECT_EQ(Field(data, "frames").list_value().values_size(), 2);
   EXPECT_EQ(Field(data, "springs").list_value().values_size(), 0);
+}
+
+// Guidance (docs/model.md §10.2): the page holds every source and the
+// recorded trial, for the page to draw the source and its gradient.
+v1::Trace GuidanceTrace() {
+  v1::Trace trace = testing::TriangleTrace();
+  v1::GuidanceTrace* g = trace.mutable_guidance();
+  g->set_trial(1);
+  g->set_decay_length(10.0);
+  for (const auto& [x, y] : {std::pair{21.25, 21.5},
+                             {-21.25, 21.5},
+                             {-21.25, -21.5},
+                             {21.25, -21.5}}) {
+    g->add_source_x(x);
+    g->add_source_y(y);
+  }
+  return trace;
+}
+
+TEST(PageDataTest, TheSourcesAndTheRecordedTrialComeFromTheTrace) {
+  const Struct data = Data(GuidanceTrace());
+  const Struct& g = Field(data, "guidance").struct_value();
+  EXPECT_EQ(Field(g, "trial").number_value(), 1);
+  EXPECT_EQ(Field(g, "decay_length").number_value(), 10.0);
+  const auto& sources = Field(g, "sources").list_value().values();
+  ASSERT_EQ(sources.size(), 8);
+  EXPECT_EQ(sources[2].number_value(), -21.25);
+  EXPECT_EQ(sources[3].number_value(), 21.5);
+  // Without guidance there is no such field.
+  EXPECT_EQ(Data(testing::TriangleTrace()).fields().count("guidance"), 0u);
+}
+
+TEST(PageDataTest, BadGuidanceIsRejectedSayingWhy) {
+  v1::Trace trace = GuidanceTrace();
+  trace.mutable_guidance()->add_source_x(1.0);
+  EXPECT_EQ(Error(trace),
+            "guidance: source_x and source_y have 5 and 4 values (one per "
+            "trial, at least one)");
+  trace = GuidanceTrace();
+  trace.mutable_guidance()->set_trial(4);
+  EXPECT_EQ(Error(trace), "guidance: trial 4 of 4 sources");
+  trace = GuidanceTrace();
+  trace.mutable_guidance()->set_decay_length(0.0);
+  EXPECT_EQ(Error(trace), "guidance: decay_length must be finite and > 0");
+  trace = GuidanceTrace();
+  {
+    testing::FpTrapsOff traps_off;
+    trace.mutable_guidance()->set_source_y(
+        2, std::numeric_limits<double>::infinity());
+    EXPECT_EQ(Error(trace), "guidance: sources[2] is not finite");
+  }
 }
 
 TEST(PageDataTest, InconsistentTracesAreRejectedSayingWhere) {
