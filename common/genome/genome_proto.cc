@@ -20,14 +20,18 @@ int InputFromProto(int channel) {
   return -1;
 }
 
-v1::Element::Channel InputToProto(int channel) {
+}  // namespace
+
+v1::Element::Channel InputChannelToProto(int channel) {
   if (channel == static_cast<int>(InputChannel::kChemical)) {
     return v1::Element::CHEMICAL;
   }
   return static_cast<v1::Element::Channel>(kFirstInput + channel);
 }
 
-}  // namespace
+v1::Element::Channel OutputChannelToProto(int channel) {
+  return static_cast<v1::Element::Channel>(kFirstOutput + channel);
+}
 
 Result<Genome> GenomeFromProto(const v1::Genome& message) {
   if (static_cast<size_t>(message.elements_size()) > kMaxGenomeElements) {
@@ -119,12 +123,11 @@ v1::Genome GenomeToProto(const Genome& genome) {
         break;
       case ElementType::kSIn:
         m->set_type(v1::Element::S_IN);
-        m->set_channel(InputToProto(e.channel));
+        m->set_channel(InputChannelToProto(e.channel));
         break;
       case ElementType::kSOut:
         m->set_type(v1::Element::S_OUT);
-        m->set_channel(
-            static_cast<v1::Element::Channel>(kFirstOutput + e.channel));
+        m->set_channel(OutputChannelToProto(e.channel));
         break;
     }
     m->set_sign(e.sign);

@@ -16,6 +16,12 @@ Result<Genome> GenomeFromProto(const v1::Genome& message);
 
 v1::Genome GenomeToProto(const Genome& genome);
 
+// The proto channel of an InputChannel (MATERNAL_0..UNIFORM are 1..4,
+// CHEMICAL 11) and of an OutputChannel (DIVIDE..CONTRACT are 5..10).
+// Precondition: a valid channel of its kind.
+v1::Element::Channel InputChannelToProto(int channel);
+v1::Element::Channel OutputChannelToProto(int channel);
+
 }  // namespace animat
 
 #endif  // ANIMAT_COMMON_GENOME_GENOME_PROTO_H_

@@ -10,6 +10,7 @@
 #include <google/protobuf/io/coded_stream.h>
 
 #include "common/base/hash.h"
+#include "common/genome/genome_proto.h"
 #include "common/protocol/genome_wire.h"
 
 namespace animat::protocol {
@@ -35,11 +36,6 @@ constexpr uint32_t kChannelTag = Tag(5, kVarint);
 // animat.v1.Genome.elements.
 constexpr uint32_t kElementsTag = Tag(1, kLengthDelimited);
 
-// animat.v1.Element.Channel values of the first input and output channels
-// (genome_proto.cc maps the same way).
-constexpr int kFirstInput = v1::Element::MATERNAL_0;
-constexpr int kFirstOutput = v1::Element::DIVIDE;
-
 uint64_t Bits(double value) {
   uint64_t bits;
   std::memcpy(&bits, &value, sizeof(bits));
@@ -61,8 +57,11 @@ ElementFields Fields(const Element& e) {
   f.x = Bits(e.x);
   f.y = Bits(e.y);
   f.channel = v1::Element::CHANNEL_NONE;
-  if (e.type == ElementType::kSIn) f.channel = kFirstInput + e.channel;
-  if (e.type == ElementType::kSOut) f.channel = kFirstOutput + e.channel;
+  // The channel numbers of GenomeToProto (CHEMICAL is not after UNIFORM).
+  if (e.type == ElementType::kSIn) f.channel = InputChannelToProto(e.channel);
+  if (e.type == ElementType::kSOut) {
+    f.channel = OutputChannelToProto(e.channel);
+  }
   return f;
 }
 

@@ -41,6 +41,18 @@ TEST(GenomeEncoderTest, RandomGenomesOfEverySizeMatchProtobuf) {
   }
 }
 
+// Guidance genomes carry CHEMICAL (docs/model.md §10.2), whose proto
+// number (11) does not follow UNIFORM's.
+TEST(GenomeEncoderTest, ChemicalInputsMatchProtobuf) {
+  for (int i = 0; i < 50; ++i) {
+    RandomStream stream(8, static_cast<uint64_t>(i),
+                        StreamPurpose::kRandomGenome);
+    const Genome genome = RandomGenome(stream, 1 + i % 20, 10.0, true);
+    SCOPED_TRACE("genome " + std::to_string(i));
+    ExpectSameAsProtobuf(genome);
+  }
+}
+
 TEST(GenomeEncoderTest, EmptyGenomeIsNoBytes) {
   ExpectSameAsProtobuf(Genome());
   EXPECT_TRUE(protocol::SerializeGenome(Genome()).bytes.empty());
@@ -69,7 +81,7 @@ TEST(GenomeEncoderTest, ZerosNegativesAndExtremesMatchProtobuf) {
         e.sign = (k % 3 == 0) ? -1 : 1;
         e.x = x;
         e.y = y;
-        if (type == ElementType::kSIn) e.channel = k % 4;
+        if (type == ElementType::kSIn) e.channel = k % kInputChannels;
         if (type == ElementType::kSOut) e.channel = k % 6;
         genome.elements.push_back(e);
         ++k;
