@@ -293,6 +293,16 @@ TEST(RunSettingsTest, GuidanceEnablesTheChemicalChannel) {
   EXPECT_TRUE(RunSettingsFromProto(m, &guided).ok());
 }
 
+TEST(GuidanceConfigTest, ReadsAsAGuidanceRun) {
+  Result<RunSettings> settings =
+      ReadRunConfigFile(ConfigsDir() + "/guidance.txtpb");
+  ASSERT_TRUE(settings.ok()) << settings.status().ToString();
+  EXPECT_TRUE(settings->model.guidance.enabled);
+  EXPECT_EQ(settings->model.guidance.trials, 4);
+  EXPECT_TRUE(settings->evolution.chemical_input);
+  EXPECT_EQ(settings->evolution.mutation.input_channels, kInputChannels);
+}
+
 TEST(PaperConfigTest, ReadsAsThePapersSetup) {
   Result<RunSettings> settings =
       ReadRunConfigFile(ConfigsDir() + "/paper.txtpb");
