@@ -66,6 +66,10 @@ int Best(const Options& o) {
                 static_cast<unsigned long long>(best->id), best->generation,
                 FitnessText(best->fitness).c_str(), best->operators.c_str());
     if (best->body) PrintBody(*best->body);
+    if (best->swum)
+      std::printf("distance: %s\n", ShortestDouble(*best->swum).c_str());
+    if (best->energy)
+      std::printf("energy: %s\n", ShortestDouble(*best->energy).c_str());
     return 0;
   });
 }

@@ -233,6 +233,14 @@ TEST_F(EvolveCliTest, LineageAnswersAsTheStoreSays) {
   EXPECT_EQ(fields["skin_edges"], body[3]) << out;
   EXPECT_EQ(RealCell(fields["spread_major"]), body[4]) << out;
   EXPECT_EQ(RealCell(fields["spread_minor"]), body[5]) << out;
+  // The distance swum and the energy, as recorded.
+  const SqlRow swum = QueryRows(db_,
+                                "SELECT distance, energy FROM individuals"
+                                " WHERE id = " +
+                                    best[0])
+                          .at(0);
+  EXPECT_EQ(RealCell(fields["distance"]), swum[0]) << out;
+  EXPECT_EQ(RealCell(fields["energy"]), swum[1]) << out;
 
   // ancestors: every ancestor once, at its shortest distance, nearest
   // first then by id; computed here from the parents table.
@@ -428,7 +436,8 @@ TEST_F(EvolveCliTest, StoreRecordsTheBodyOfEveryEvaluation) {
   const std::vector<SqlRow> rows =
       QueryRows(db_,
                 "SELECT id, genome, status, springs, chambers, skin_edges,"
-                " spread_major, spread_minor FROM individuals ORDER BY id");
+                " spread_major, spread_minor, distance, energy"
+                " FROM individuals ORDER BY id");
   ASSERT_GT(rows.size(), 1000u);
   std::map<std::string, int64_t> histogram;  // Chambers -> individuals.
   int with_body = 0;
@@ -449,6 +458,9 @@ TEST_F(EvolveCliTest, StoreRecordsTheBodyOfEveryEvaluation) {
                   RealBits(result.body->spread_major),
                   RealBits(result.body->spread_minor)};
     }
+    // The distance swum and the energy, when ok.
+    expected.push_back(result.distance ? RealBits(*result.distance) : "NULL");
+    expected.push_back(result.energy ? RealBits(*result.energy) : "NULL");
     EXPECT_EQ(SqlRow(row.begin() + 3, row.end()), expected);
     ++histogram[expected[1]];
   }
