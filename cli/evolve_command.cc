@@ -4,7 +4,6 @@
 // in one command (master/run/session.h, as animat-master starts). Run it
 // again with the same --db to continue; Ctrl-C leaves a resumable store.
 #include <algorithm>
-#include <cstdio>
 #include <memory>
 #include <optional>
 #include <string>
@@ -46,9 +45,10 @@ int Run(const Options& options) {
   o.resume_command = CommandLine(resume);
   o.log = Prefixed("evolve", StderrSink);
   o.dispatcher_log = [](std::string_view) {};  // Joins and leaves are routine.
-  o.progress = [](const GenerationReport& report) {
-    std::printf("%s\n", FormatProgress(report).c_str());
-    std::fflush(stdout);
+  // Progress is a log line on standard error, as animat-master's; standard
+  // output carries only the session's closing line.
+  o.progress = [log = o.log](const GenerationReport& report) {
+    log(FormatProgress(report));
   };
   const Status status = RunSession(o);
   return status.ok() ? 0 : Fail(status.message());

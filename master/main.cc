@@ -94,6 +94,8 @@ int main(int argc, char** argv) {
   google::protobuf::SetLogHandler(nullptr);
   o.choice = resume ? animat::RunChoice::kResume : animat::RunChoice::kStart;
   o.resume_command = ResumeCommand(o);
+  // Progress is a log line (standard error); the closing line, standard
+  // output.
   const animat::LogSink log = o.log;
   o.progress = [log](const animat::GenerationReport& report) {
     log(animat::FormatProgress(report));

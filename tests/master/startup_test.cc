@@ -141,7 +141,7 @@ TEST_F(StartupTest, TheResumeHintIsTheWholeCommandAndWorksAsPrinted) {
   const std::string expected = "animat-master --resume --db " + db +
                                " --bind " + Endpoint() + " --heartbeat-ms " +
                                std::to_string(kMasterHeartbeatMs);
-  const std::string output = master->standard_error();
+  const std::string output = master->standard_output();
   const size_t hint = output.find("stopped; resume with: ");
   ASSERT_NE(hint, std::string::npos) << output;
   std::istringstream line(
@@ -179,13 +179,13 @@ TEST_F(StartupTest, TheResumeHintKeepsTheKeysAndQuotesWhatNeedsIt) {
   ASSERT_TRUE(master->Signal(SIGTERM));
   ASSERT_TRUE(AwaitExit(*master, kStepWait, "SIGTERM"));
   ASSERT_EQ(master->exit_code(), 0) << master->output();
-  EXPECT_NE(master->standard_error().find(
-                "stopped; resume with: animat-master --resume --db '" + db +
+  // The closing line is the master's standard output, all of it.
+  EXPECT_EQ(master->standard_output(),
+            "stopped; resume with: animat-master --resume --db '" + db +
                 "' --bind 'tcp://127.0.0.1:*' --curve-secret " +
                 Path("keys/master.key") + " --curve-allow " +
                 Path("keys/workers.allow") + " --heartbeat-ms " +
-                std::to_string(kMasterHeartbeatMs) + "\n"),
-            std::string::npos)
+                std::to_string(kMasterHeartbeatMs) + "\n")
       << master->output();
 }
 
