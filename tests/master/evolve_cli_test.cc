@@ -208,7 +208,8 @@ TEST_F(EvolveCliTest, FewerGenerationsThanTheRunHasSaySoAndChangeNothing) {
                      " holds run 1 (finished) with 2 generations; "
                      "--generations 1 counts them all, so there is "
                      "nothing to run. To extend it, ask for more than "
-                     "2: animat evolve --db " +
+                     "2: " +
+                     std::string(ANIMAT_BIN_DIR) + "/animat evolve --db " +
                      db_ + " --workers 1 --generations 12"),
             std::string::npos)
       << err;
