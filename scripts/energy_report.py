@@ -152,14 +152,8 @@ def main():
         budget = budget_of(s["model_text"])
         curve, last = energy_extras(path, s["run_id"], budget)
         best = s["best"]
-        stem = os.path.join(args.dest, "bests", f"{name[:-3]}-{best['id']}")
-        rr.run([animat, "lineage", "genome", str(best["id"]), "--db", path,
-                "-o", stem + ".json"])
-        with open(stem + ".config.txtpb", "w") as f:
-            f.write("# proto-file: proto/animat/v1/config.proto\n"
-                    "# proto-message: animat.v1.Config\n"
-                    f"# The model of run {name[:-3]} (docs/results.md).\n")
-            f.write(s["model_text"])
+        stem = rr.write_best(animat, path, name[:-3], best["id"],
+                             s["model_text"], args.dest)
         again = simulate(animat, stem + ".json", stem + ".config.txtpb")
         if float.hex(again["fitness"]) != float.hex(best["fitness"]):
             sys.exit(f"{stem}: simulated again, fitness {again['fitness']} "
