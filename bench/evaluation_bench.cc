@@ -141,6 +141,30 @@ BENCHMARK(BM_Evaluate)
     })
     ->Unit(benchmark::kMillisecond);
 
+// The default evaluation on one and on two threads of one process at
+// once, as a worker with --threads 2 runs them: the wall time of an
+// evaluation as each thread sees it, and evaluations per second over all
+// threads (items_per_second). Against two single-threaded processes
+// (animat-dispatch-bench), this isolates what two threads of one process
+// share.
+void BM_EvaluateThreads(benchmark::State& state) {
+  const Genome& genome = BenchGenome();
+  ModelConfig config;
+  config.grn.precision = Precision::kFloat;
+  EvaluationResult result;
+  for (auto _ : state) {
+    result = Evaluate(genome, config);
+    benchmark::DoNotOptimize(result);
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["ok"] = result.status == EvalStatus::kOk;
+}
+BENCHMARK(BM_EvaluateThreads)
+    ->Threads(1)
+    ->Threads(2)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
 // The default configuration with another integrator (float network, the
 // path in use): state.range(0) is the Integrator (0 semi-implicit Euler,
 // the default before model v2; 2 RK4, the first default under v2).
@@ -159,6 +183,24 @@ void BM_EvaluateIntegrator(benchmark::State& state) {
 BENCHMARK(BM_EvaluateIntegrator)
     ->DenseRange(0, 4)
     ->Unit(benchmark::kMillisecond);
+
+// The Bullet backend (the anchor the native integrators are measured
+// against): the same forces integrated by a Bullet world, without
+// (state.range(0) == 0) or with (1) cell-cell contacts.
+void BM_EvaluateBullet(benchmark::State& state) {
+  const Genome& genome = BenchGenome();
+  ModelConfig config;
+  config.physics.backend = PhysicsBackend::kBullet;
+  config.physics.contacts = state.range(0) == 1;
+  EvaluationResult result;
+  for (auto _ : state) {
+    result = Evaluate(genome, config);
+    benchmark::DoNotOptimize(result);
+  }
+  state.SetLabel(config.physics.contacts ? "contacts" : "no contacts");
+  state.counters["ok"] = result.status == EvalStatus::kOk;
+}
+BENCHMARK(BM_EvaluateBullet)->DenseRange(0, 1)->Unit(benchmark::kMillisecond);
 
 // state.range(0): 0 non-viable, 1 too few cells, 2 no chamber, 3 late
 // division. The label is the status the evaluation gave.

@@ -4,7 +4,6 @@
 // in one command (master/run/session.h, as animat-master starts). Run it
 // again with the same --db to continue; Ctrl-C leaves a resumable store.
 #include <algorithm>
-#include <cstdio>
 #include <memory>
 #include <optional>
 #include <string>
@@ -26,7 +25,8 @@ struct Options {
   bool force = false;
 };
 
-int Run(const Options& options) {
+// `program`: the animat tool as it was started, for the resume hint.
+int Run(const Options& options, const std::string& program) {
   SessionOptions o;
   o.config_path = options.config;
   o.db_path = options.db;
@@ -39,16 +39,17 @@ int Run(const Options& options) {
           ? options.workers
           : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   o.worker_log = options.db + ".workers.log";
-  std::vector<std::string> resume = {"animat", "evolve", "--db", options.db};
+  std::vector<std::string> resume = {program, "evolve", "--db", options.db};
   if (options.workers > 0) {
     resume.insert(resume.end(), {"--workers", std::to_string(options.workers)});
   }
   o.resume_command = CommandLine(resume);
   o.log = Prefixed("evolve", StderrSink);
   o.dispatcher_log = [](std::string_view) {};  // Joins and leaves are routine.
-  o.progress = [](const GenerationReport& report) {
-    std::printf("%s\n", FormatProgress(report).c_str());
-    std::fflush(stdout);
+  // Progress is a log line on standard error, as animat-master's; standard
+  // output carries only the session's closing line.
+  o.progress = [log = o.log](const GenerationReport& report) {
+    log(FormatProgress(report));
   };
   const Status status = RunSession(o);
   return status.ok() ? 0 : Fail(status.message());
@@ -74,7 +75,11 @@ Command AddEvolveCommand(CLI::App& app) {
       ->check(CLI::Range(1, 100000000));
   sub->add_flag("--force", options->force,
                 "Continue even with another configuration or build");
-  return [options] { return Run(*options); };
+  // After parsing, the app's name is argv[0] (CLI11 names an unnamed app
+  // so).
+  return [options, &app] {
+    return Run(*options, app.get_name().empty() ? "animat" : app.get_name());
+  };
 }
 
 }  // namespace animat::cli

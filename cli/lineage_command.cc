@@ -66,6 +66,10 @@ int Best(const Options& o) {
                 static_cast<unsigned long long>(best->id), best->generation,
                 FitnessText(best->fitness).c_str(), best->operators.c_str());
     if (best->body) PrintBody(*best->body);
+    if (best->swum)
+      std::printf("distance: %s\n", ShortestDouble(*best->swum).c_str());
+    if (best->energy)
+      std::printf("energy: %s\n", ShortestDouble(*best->energy).c_str());
     return 0;
   });
 }
@@ -213,15 +217,17 @@ Command AddLineageCommand(CLI::App& app) {
       "The run's configurations, from which generation each (--force and "
       "extensions change them); with --generation, the one in force then");
   common(configs);
-  configs
-      ->add_option("--generation", o->generation,
-                   "Write the configuration in force at this generation")
-      ->check(CLI::Range(0, 100000000));
+  CLI::Option* generation =
+      configs
+          ->add_option("--generation", o->generation,
+                       "Write the configuration in force at this generation")
+          ->check(CLI::Range(0, 100000000));
   configs
       ->add_option("-o,--output", o->output,
                    "With --generation: output file (.txtpb or .json); - for "
                    "standard output (text format)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->needs(generation);
   CLI::App* upgrade = lineage->add_subcommand(
       "upgrade",
       "Bring a store written by an older animat to this build's schema");

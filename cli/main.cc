@@ -32,6 +32,12 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;
   }
+  if (const std::string why = animat::cli::MalformedOptionValue(app);
+      !why.empty()) {
+    std::cerr << "animat: " << why
+              << "\nRun with --help for more information.\n";
+    return 2;
+  }
   // A mistyped ANIMAT_ISA is refused, not silently replaced.
   if (const animat::Result<animat::Isa> isa = animat::IsaFromEnvironment();
       !isa.ok()) {

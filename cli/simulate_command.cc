@@ -45,6 +45,8 @@ std::vector<Field> ResultFields(const EvaluationResult& r) {
   fields.push_back({"status", EvalStatusName(r.status), true});
   if (!r.reason.empty()) fields.push_back({"reason", r.reason, true});
   if (r.fitness) fields.push_back({"fitness", Exact(*r.fitness)});
+  if (r.distance) fields.push_back({"distance", Exact(*r.distance)});
+  if (r.energy) fields.push_back({"energy", Exact(*r.energy)});
   fields.push_back({"cells", std::to_string(r.cells)});
   fields.push_back({"steps", std::to_string(r.steps)});
   if (r.state_hash != 0) {

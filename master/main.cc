@@ -62,10 +62,13 @@ void AddOptions(CLI::App& app, animat::SessionOptions& o, bool& resume) {
                        "Print the build id, protocol and model versions");
 }
 
-// The command that continues the run with the same endpoint and keys.
-std::string ResumeCommand(const animat::SessionOptions& o) {
-  std::vector<std::string> words = {"animat-master", "--resume", "--db",
-                                    o.db_path,       "--bind",   o.bind};
+// The command that continues the run with the same endpoint and keys,
+// starting `program` as this one was started (so that it runs as printed
+// from the same directory).
+std::string ResumeCommand(const std::string& program,
+                          const animat::SessionOptions& o) {
+  std::vector<std::string> words = {program,   "--resume", "--db",
+                                    o.db_path, "--bind",   o.bind};
   if (!o.curve_secret_file.empty()) {
     words.insert(words.end(), {"--curve-secret", o.curve_secret_file,
                                "--curve-allow", o.curve_allow_file});
@@ -93,7 +96,10 @@ int main(int argc, char** argv) {
   }
   google::protobuf::SetLogHandler(nullptr);
   o.choice = resume ? animat::RunChoice::kResume : animat::RunChoice::kStart;
-  o.resume_command = ResumeCommand(o);
+  o.resume_command = ResumeCommand(
+      argc > 0 && argv[0][0] != '\0' ? argv[0] : "animat-master", o);
+  // Progress is a log line (standard error); the closing line, standard
+  // output.
   const animat::LogSink log = o.log;
   o.progress = [log](const animat::GenerationReport& report) {
     log(animat::FormatProgress(report));

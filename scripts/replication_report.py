@@ -108,6 +108,20 @@ def store_summary(path):
     }
 
 
+def write_best(animat, db, name, individual, model_text, dest):
+    """Writes run NAME's individual from DB as DEST/bests/NAME-ID.json, with
+    the model it ran under beside it (.config.txtpb); returns the stem."""
+    stem = os.path.join(dest, "bests", f"{name}-{individual}")
+    run([animat, "lineage", "genome", str(individual), "--db", db,
+         "-o", stem + ".json"])
+    with open(stem + ".config.txtpb", "w") as f:
+        f.write("# proto-file: proto/animat/v1/config.proto\n"
+                "# proto-message: animat.v1.Config\n"
+                f"# The model of run {name} (docs/results.md).\n")
+        f.write(model_text)
+    return stem
+
+
 def analyze(animat, db, individual):
     out = run([animat, "analyze", "--db", db, "--individual", str(individual),
                "-o", "-"])
@@ -234,14 +248,8 @@ def main():
     # The bests: genome, model configuration, analysis.
     for r in runs:
         best = r["best"]
-        stem = os.path.join(args.dest, "bests", f"{r['name']}-{best['id']}")
-        run([animat, "lineage", "genome", str(best["id"]), "--db", r["db"],
-             "-o", stem + ".json"])
-        with open(stem + ".config.txtpb", "w") as f:
-            f.write("# proto-file: proto/animat/v1/config.proto\n"
-                    "# proto-message: animat.v1.Config\n"
-                    f"# The model of run {r['name']} (docs/results.md).\n")
-            f.write(r["model_text"])
+        stem = write_best(animat, r["db"], r["name"], best["id"],
+                          r["model_text"], args.dest)
         r["best_genome"] = stem + ".json"
         # The stored genome and model, simulated again here, must give the
         # stored fitness to the last bit.

@@ -12,6 +12,7 @@ scripts/setup.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build build --target animat animat-worker animat-master
 mkdir -p out
+# Progress goes to standard error; the closing line (the best, or how to
+# resume) to standard output.
 build/bin/animat evolve --config configs/quickstart.txtpb \
   --db out/evolution.db "$@"
-echo "the best: build/bin/animat lineage best --db out/evolution.db"

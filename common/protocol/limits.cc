@@ -2,6 +2,7 @@
 // "Limits").
 #include <cmath>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "common/base/text.h"
@@ -193,6 +194,21 @@ Status ValidateResult(const v1::EvaluationResult& r) {
   for (double d : r.source_distances()) {
     if (!(std::isfinite(d) && d >= 0.0)) {
       return Status::InvalidArgument("source distance " + ShortestDouble(d));
+    }
+  }
+  // The distance swum and the energy: optional, only with status OK,
+  // finite and never negative.
+  const std::tuple<const char*, bool, double> measures[] = {
+      {"distance", r.has_distance(), r.distance()},
+      {"energy", r.has_energy(), r.energy()}};
+  for (const auto& [name, has, value] : measures) {
+    if (has && !ok) {
+      return Status::InvalidArgument(std::string(name) +
+                                     " present without status OK");
+    }
+    if (has && !(std::isfinite(value) && value >= 0.0)) {
+      return Status::InvalidArgument(std::string(name) + " " +
+                                     ShortestDouble(value));
     }
   }
   Status status = CheckString("reason", r.reason(), kMaxReasonBytes);

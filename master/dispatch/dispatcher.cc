@@ -200,7 +200,7 @@ void Dispatcher::Handle(const std::string& identity,
     // say hello again. Logged once per peer.
     if (strangers_.size() < 10000 && strangers_.insert(identity).second) {
       Ignore(std::string("a ") + protocol::BodyName(envelope) +
-             " from a peer that has not said hello");
+             " message from a peer that has not said hello");
     } else {
       ++stats_.ignored;
     }

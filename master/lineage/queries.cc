@@ -23,7 +23,8 @@ Result<int64_t> ChooseRun(Store& store, std::optional<int64_t> run) {
 Result<Summary> Best(Store& store, int64_t run) {
   Result<sql::Statement> select = StoreAccess::Database(store).Prepare(
       "SELECT b.id, i.generation, i.operators, i.status, i.fitness, i.cells,"
-      " i.springs, i.chambers, i.skin_edges, i.spread_major, i.spread_minor"
+      " i.springs, i.chambers, i.skin_edges, i.spread_major, i.spread_minor,"
+      " i.distance, i.energy"
       " FROM best b JOIN individuals i ON i.run_id = b.run_id AND i.id = b.id"
       " WHERE b.run_id = ?");
   if (!select.ok()) return select.status();
@@ -49,6 +50,8 @@ Result<Summary> Best(Store& store, int64_t run) {
     body.set_spread_major(select->Double(9));
     body.set_spread_minor(select->Double(10));
   }
+  if (!select->IsNull(11)) best.swum = select->Double(11);
+  if (!select->IsNull(12)) best.energy = select->Double(12);
   return best;
 }
 

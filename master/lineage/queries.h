@@ -33,6 +33,11 @@ struct Summary {
   // Its body, when its evaluation built one and the store recorded it
   // (schema version 4 on); filled by Best only.
   std::optional<v1::BodySummary> body;
+  // The distance swum (radii) and the actuators' work, when its evaluation
+  // is ok and the store recorded them (schema version 6 on); filled by
+  // Best only.
+  std::optional<double> swum;
+  std::optional<double> energy;
 };
 
 // The run's id: `run` if given, else the latest run. kNotFound if none.

@@ -4,7 +4,9 @@
 
 #include <atomic>
 #include <csignal>
+#include <cstdio>
 #include <memory>
+#include <mutex>
 #include <utility>
 #include <zmq.hpp>
 
@@ -171,14 +173,23 @@ Status Serve(EvolutionRun* run, Dispatcher* dispatcher, const SessionOptions& o,
   if (run->finished()) {
     // Workers started for this run may go (--exit-when-done).
     dispatcher->Farewell("the run is finished");
-    o.log("finished; the best: animat lineage best --db " + o.db_path);
+    o.outcome("finished; the best: animat lineage best --db " +
+              CommandLine({o.db_path}));
   } else {
-    o.log("stopped; resume with: " + o.resume_command);
+    o.outcome("stopped; resume with: " + o.resume_command);
   }
   return Status::Ok();
 }
 
 }  // namespace
+
+void StdoutSink(std::string_view line) {
+  static std::mutex mutex;
+  std::lock_guard<std::mutex> lock(mutex);
+  std::fwrite(line.data(), 1, line.size(), stdout);
+  std::fputc('\n', stdout);
+  std::fflush(stdout);
+}
 
 std::string CommandLine(const std::vector<std::string>& words) {
   std::string line;
@@ -217,10 +228,10 @@ Status RunSession(const SessionOptions& o) {
   Result<RunPlan> plan = Plan(store->get(), o, *settings);
   if (!plan.ok()) return plan.status();
   if (NothingToRun(*plan)) {
-    o.log("run " + std::to_string(plan->run_id) + " is finished (" +
-          std::to_string(plan->generations_made) +
-          " generations); to extend it: " +
-          ExtendHint(o, plan->generations_made));
+    o.outcome("run " + std::to_string(plan->run_id) + " is finished (" +
+              std::to_string(plan->generations_made) +
+              " generations); to extend it: " +
+              ExtendHint(o, plan->generations_made));
     return Status::Ok();
   }
   // Bound before the run is written: a port in use leaves the store as it

@@ -15,6 +15,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "common/base/log.h"
@@ -29,6 +30,10 @@ enum class RunChoice {
   kResume,         // The store's run: the store must exist and hold one.
   kStartOrResume,  // The store's run if it holds one, else a new run.
 };
+
+// Writes the line and a newline to standard output and flushes it, as a
+// program's result (no timestamp). Callable from any thread.
+void StdoutSink(std::string_view line);
 
 struct SessionOptions {
   // What to run: the run configuration file (needed to start; when
@@ -60,9 +65,16 @@ struct SessionOptions {
   // "animat-master --resume --db run.db --bind ..."): said when the run
   // stops before its end, and in the refusal of too few generations.
   std::string resume_command;
+
+  // Where the session speaks. Progress and diagnostics are log lines
+  // (timestamped, on standard error by default); `outcome` is the one line
+  // that ends the session (finished, or the command that resumes it), the
+  // program's result, on standard output by default so that it can be
+  // piped or captured apart from the log.
   LogSink log = Prefixed("master", StderrSink);  // The session's.
   LogSink dispatcher_log = Prefixed("dispatcher", StderrSink);  // Workers'.
-  // After each generation completes.
+  LogSink outcome = StdoutSink;
+  // After each generation completes; the programs log a progress line.
   std::function<void(const GenerationReport&)> progress;
 };
 

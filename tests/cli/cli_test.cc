@@ -106,11 +106,14 @@ TEST(CliTest, SimulatePrintsStatusAndFitness) {
                              " --config " + ShortConfig());
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const std::vector<std::string> lines = Lines(run.output);
-  ASSERT_GE(lines.size(), 4u);
+  ASSERT_GE(lines.size(), 6u);
   EXPECT_EQ(lines[0], "status: ok");
   EXPECT_EQ(lines[1].rfind("fitness: ", 0), 0u);
-  EXPECT_EQ(lines[2], "cells: 32");
-  EXPECT_EQ(lines[3], "steps: 800");
+  // Under the paper's fitness the distance is the fitness.
+  EXPECT_EQ(lines[2], "distance: " + lines[1].substr(9));
+  EXPECT_EQ(lines[3].rfind("energy: ", 0), 0u);
+  EXPECT_EQ(lines[4], "cells: 32");
+  EXPECT_EQ(lines[5], "steps: 800");
 }
 
 // "key: value" lines as a map, in order.
@@ -164,11 +167,12 @@ TEST(CliTest, SimulatePrintsTheBodyItBuilt) {
   const auto lines = KeyValues(text.output);
   std::vector<std::string> keys;
   for (const auto& [key, value] : lines) keys.push_back(key);
-  EXPECT_EQ(keys,
-            (std::vector<std::string>{
-                "status", "fitness", "cells", "steps", "state_hash", "springs",
-                "chambers", "skin_edges", "spread_major", "spread_minor"}));
-  EXPECT_GT(std::stoi(lines[6].second), 0);  // Chambers.
+  EXPECT_EQ(keys, (std::vector<std::string>{
+                      "status", "fitness", "distance", "energy", "cells",
+                      "steps", "state_hash", "springs", "chambers",
+                      "skin_edges", "spread_major", "spread_minor"}));
+  ASSERT_EQ(lines.size(), keys.size());
+  EXPECT_GT(std::stoi(lines[8].second), 0);  // Chambers.
 
   const Outcome failed =
       Animat("simulate --genome " +

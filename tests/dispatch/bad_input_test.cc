@@ -215,7 +215,7 @@ TEST_F(DispatchTest, MasterSurvivesGarbageAndKeepsServingCorrectWork) {
        {"ignored a malformed message from an unknown peer"}},
       {"results from a stranger",
        [&] { send_from_stranger(protocol::Encode(unknown_results)); },
-       {"ignored a results from a peer that has not said hello"}},
+       {"ignored a results message from a peer that has not said hello"}},
   };
 
   for (const BadInput& input : inputs) {

@@ -27,6 +27,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <set>
 #include <string>
 #include <thread>
@@ -203,45 +204,48 @@ inline void ExpectSameResult(const v1::EvaluationResult& actual,
   }
 }
 
-// The dispatcher's log lines, in order.
+// The dispatcher's log lines, in order. Like every LogSink (common/base/
+// log.h) it may be called from any thread: the ZAP handler logs from its
+// own. The questions read a copy taken under the lock.
 class LogLines {
  public:
   LogSink Sink() {
-    return [this](std::string_view line) { lines_.emplace_back(line); };
+    return [this](std::string_view line) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      lines_.emplace_back(line);
+    };
   }
-  const std::vector<std::string>& lines() const { return lines_; }
-  size_t size() const { return lines_.size(); }
+  std::vector<std::string> lines() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return lines_;
+  }
+  size_t size() const { return lines().size(); }
   // Lines (from the `from`-th on) that contain every one of `parts`.
   int Count(const std::vector<std::string>& parts, size_t from = 0) const {
+    const std::vector<std::string> all_lines = lines();
     int n = 0;
-    for (size_t i = from; i < lines_.size(); ++i) {
-      bool all = true;
-      for (const std::string& part : parts) {
-        all = all && lines_[i].find(part) != std::string::npos;
-      }
-      n += all ? 1 : 0;
+    for (size_t i = from; i < all_lines.size(); ++i) {
+      n += HasAll(all_lines[i], parts) ? 1 : 0;
     }
     return n;
   }
   // The first such line, or "".
   std::string Find(const std::vector<std::string>& parts,
                    size_t from = 0) const {
-    for (size_t i = from; i < lines_.size(); ++i) {
-      bool all = true;
-      for (const std::string& part : parts) {
-        all = all && lines_[i].find(part) != std::string::npos;
-      }
-      if (all) return lines_[i];
+    const std::vector<std::string> all_lines = lines();
+    for (size_t i = from; i < all_lines.size(); ++i) {
+      if (HasAll(all_lines[i], parts)) return all_lines[i];
     }
     return "";
   }
   // The lines, a run of identical ones shown once with its count.
   std::string Dump(size_t from = 0) const {
+    const std::vector<std::string> all_lines = lines();
     std::string text;
-    for (size_t i = from; i < lines_.size();) {
+    for (size_t i = from; i < all_lines.size();) {
       size_t end = i + 1;
-      while (end < lines_.size() && lines_[end] == lines_[i]) ++end;
-      text += lines_[i];
+      while (end < all_lines.size() && all_lines[end] == all_lines[i]) ++end;
+      text += all_lines[i];
       if (end - i > 1) text += "  [" + std::to_string(end - i) + " times]";
       text += "\n";
       i = end;
@@ -250,6 +254,15 @@ class LogLines {
   }
 
  private:
+  static bool HasAll(const std::string& line,
+                     const std::vector<std::string>& parts) {
+    for (const std::string& part : parts) {
+      if (line.find(part) == std::string::npos) return false;
+    }
+    return true;
+  }
+
+  mutable std::mutex mutex_;
   std::vector<std::string> lines_;
 };
 

@@ -155,7 +155,7 @@ TEST_F(DispatchTest, MasterRefusesEveryNumericFieldOutOfRangeSayingWhy) {
         << log_.Dump(from);
     ServeFor(milliseconds(20), pump);  // A second line would show now.
     EXPECT_EQ(log_.size(), from + 1) << log_.Dump(from);
-    const std::string& line = log_.lines()[from];
+    const std::string line = log_.lines()[from];
     EXPECT_TRUE(line.rfind(malformed, 0) == 0 || line.rfind(invalid, 0) == 0)
         << line;
     EXPECT_EQ(dispatcher_->stats().ignored, ignored + 1);
@@ -310,7 +310,8 @@ TEST_F(DispatchTest, HugeHelloIsRefusedWithoutStallingTheMasterOrItsLog) {
     }
     EXPECT_LE(log_.size(), from + 1) << log_.Dump(from);
     for (size_t i = from; i < log_.size(); ++i) {
-      EXPECT_LT(log_.lines()[i].size(), 200u) << log_.lines()[i];
+      const std::string line = log_.lines()[i];
+      EXPECT_LT(line.size(), 200u) << line;
     }
     if (hello.size() < static_cast<size_t>(protocol::kMaxWorkerMessageBytes)) {
       // Within the socket's limit: refused by its size, unparsed.
@@ -344,7 +345,7 @@ TEST_F(DispatchTest, PeersStringsReachTheLogEscapedAndCutShort) {
                     [&] { peer.Pump(); }))
       << log_.Dump();
   ASSERT_EQ(log_.size(), from + 1) << log_.Dump();
-  const std::string& line = log_.lines()[from];
+  const std::string line = log_.lines()[from];
   EXPECT_EQ(line.find('\n'), std::string::npos) << line;
   EXPECT_EQ(line.find('\r'), std::string::npos) << line;
   EXPECT_NE(line.find("refused worker evil\\n2026-01-01T00:00:00.000Z master: "

@@ -378,11 +378,18 @@ TEST(SchemaTest, Version3StoreGainsBodyColumnsNullInEveryOldRow) {
     // Version 3's columns first, in order, then the body's.
     std::vector<std::vector<std::string>> names =
         Rows(**store, "SELECT name FROM pragma_table_info('individuals')");
-    ASSERT_EQ(names.size(), 22u);
+    ASSERT_EQ(names.size(), 24u);
     for (size_t c = 0; c < kBodyColumns.size(); ++c) {
       EXPECT_EQ(names[17 + c][0], kBodyColumns[c]);
     }
     EXPECT_EQ(names[16][0], "evaluated_at");
+    // Then version 6's distance swum and energy, NULL in every old row.
+    EXPECT_EQ(names[22][0], "distance");
+    EXPECT_EQ(names[23][0], "energy");
+    EXPECT_EQ(Value(**store,
+                    "SELECT COUNT(*) FROM individuals"
+                    " WHERE distance IS NOT NULL OR energy IS NOT NULL"),
+              "0");
     EXPECT_EQ(Rows(**store,
                    "SELECT id, springs, chambers, skin_edges, spread_major,"
                    " spread_minor FROM individuals ORDER BY id"),

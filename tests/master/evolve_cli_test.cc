@@ -1,5 +1,6 @@
-// The one-command tools over real stores: `animat evolve` runs, reports
-// each generation and extends a finished run; `animat lineage` answers
+// The one-command tools over real stores: `animat evolve` runs, logs a
+// progress line per generation on standard error (standard output has only
+// its closing line) and extends a finished run; `animat lineage` answers
 // from the store (checked against SQL on it), its genomes replay to the
 // recorded bits under `animat simulate`; bad arguments get a clear error
 // and a non-zero exit.
@@ -12,6 +13,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -99,11 +101,28 @@ class EvolveCliTest : public MasterTest {
     return animat->exit_code();
   }
 
-  // The progress lines `animat evolve` printed for generations `first` to
-  // `generations` - 1, each as the store records the generation.
-  void ExpectProgressLines(const std::string& out, int first, int generations) {
-    const std::vector<std::string> lines = Lines(out);
-    ASSERT_EQ(lines.size(), static_cast<size_t>(generations - first)) << out;
+  // The output convention (README): progress is logged, timestamped, on
+  // standard error, one line for each of generations `first` to
+  // `generations` - 1 as the store records it; standard output holds only
+  // the closing line.
+  void ExpectProgressLines(const std::string& out, const std::string& err,
+                           int first, int generations) {
+    EXPECT_EQ(out,
+              "finished; the best: animat lineage best --db " + db_ + "\n");
+    static const std::regex kProgressLine(
+        R"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d\.\d{3}Z evolve: (generation .*))");
+    static const std::regex kAnyProgress(R"(generation \d+/\d+: )");
+    std::vector<std::string> lines;
+    for (const std::string& line : Lines(err)) {
+      std::smatch match;
+      if (std::regex_match(line, match, kProgressLine)) {
+        lines.push_back(match[1]);
+      } else {
+        EXPECT_FALSE(std::regex_search(line, kAnyProgress))
+            << "a progress line without the log's timestamp: " << line;
+      }
+    }
+    ASSERT_EQ(lines.size(), static_cast<size_t>(generations - first)) << err;
     for (int g = first; g < generations; ++g) {
       const std::vector<SqlRow> rows =
           QueryRows(db_,
@@ -133,14 +152,14 @@ class EvolveCliTest : public MasterTest {
                      &out, &err),
               0)
         << err;
-    ExpectProgressLines(out, 0, generations);
+    ExpectProgressLines(out, err, 0, generations);
   }
 
   std::string config_;
   std::string db_;
 };
 
-TEST_F(EvolveCliTest, EvolveReportsEachGenerationAndExtendsAFinishedRun) {
+TEST_F(EvolveCliTest, EvolveLogsEachGenerationOnStderrAndExtendsAFinishedRun) {
   TestRun run;
   run.seed = 21;
   config_ = WriteConfig("run.txtpb", run);
@@ -158,7 +177,7 @@ TEST_F(EvolveCliTest, EvolveReportsEachGenerationAndExtendsAFinishedRun) {
              &out, &err),
       0)
       << err;
-  ExpectProgressLines(out, 1, 3);
+  ExpectProgressLines(out, err, 1, 3);
   progress = ReadProgress(db_);
   EXPECT_TRUE(progress.finished) << progress.ToString();
   EXPECT_EQ(progress.complete_generations, 3);
@@ -189,7 +208,8 @@ TEST_F(EvolveCliTest, FewerGenerationsThanTheRunHasSaySoAndChangeNothing) {
                      " holds run 1 (finished) with 2 generations; "
                      "--generations 1 counts them all, so there is "
                      "nothing to run. To extend it, ask for more than "
-                     "2: animat evolve --db " +
+                     "2: " +
+                     std::string(ANIMAT_BIN_DIR) + "/animat evolve --db " +
                      db_ + " --workers 1 --generations 12"),
             std::string::npos)
       << err;
@@ -233,6 +253,14 @@ TEST_F(EvolveCliTest, LineageAnswersAsTheStoreSays) {
   EXPECT_EQ(fields["skin_edges"], body[3]) << out;
   EXPECT_EQ(RealCell(fields["spread_major"]), body[4]) << out;
   EXPECT_EQ(RealCell(fields["spread_minor"]), body[5]) << out;
+  // The distance swum and the energy, as recorded.
+  const SqlRow swum = QueryRows(db_,
+                                "SELECT distance, energy FROM individuals"
+                                " WHERE id = " +
+                                    best[0])
+                          .at(0);
+  EXPECT_EQ(RealCell(fields["distance"]), swum[0]) << out;
+  EXPECT_EQ(RealCell(fields["energy"]), swum[1]) << out;
 
   // ancestors: every ancestor once, at its shortest distance, nearest
   // first then by id; computed here from the parents table.
@@ -428,7 +456,8 @@ TEST_F(EvolveCliTest, StoreRecordsTheBodyOfEveryEvaluation) {
   const std::vector<SqlRow> rows =
       QueryRows(db_,
                 "SELECT id, genome, status, springs, chambers, skin_edges,"
-                " spread_major, spread_minor FROM individuals ORDER BY id");
+                " spread_major, spread_minor, distance, energy"
+                " FROM individuals ORDER BY id");
   ASSERT_GT(rows.size(), 1000u);
   std::map<std::string, int64_t> histogram;  // Chambers -> individuals.
   int with_body = 0;
@@ -449,6 +478,9 @@ TEST_F(EvolveCliTest, StoreRecordsTheBodyOfEveryEvaluation) {
                   RealBits(result.body->spread_major),
                   RealBits(result.body->spread_minor)};
     }
+    // The distance swum and the energy, when ok.
+    expected.push_back(result.distance ? RealBits(*result.distance) : "NULL");
+    expected.push_back(result.energy ? RealBits(*result.energy) : "NULL");
     EXPECT_EQ(SqlRow(row.begin() + 3, row.end()), expected);
     ++histogram[expected[1]];
   }

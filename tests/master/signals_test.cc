@@ -20,9 +20,9 @@ void ExpectCleanStop(ChildProcess& master, int signal, const std::string& db) {
   ASSERT_TRUE(master.WaitExit(kStepWait)) << "no exit after the signal";
   EXPECT_EQ(master.exit_code(), 0) << master.Describe() << "\n"
                                    << master.output();
-  EXPECT_NE(
-      master.output().find("resume with: animat-master --resume --db " + db),
-      std::string::npos)
+  EXPECT_NE(master.output().find("resume with: " + std::string(ANIMAT_BIN_DIR) +
+                                 "/animat-master --resume --db " + db),
+            std::string::npos)
       << master.output();
   EXPECT_EQ(QueryCell(db, "PRAGMA integrity_check"), "ok");
   const Progress stopped = ReadProgress(db);

@@ -100,8 +100,8 @@ TEST_F(StartupTest, ResumingWithFewerGenerationsThanMadeIsRefused) {
                 db +
                 " holds run 1 (finished) with 2 generations; "
                 "--generations 1 counts them all, so there is nothing "
-                "to run. To extend it, ask for more than 2: "
-                "animat-master --resume --db " +
+                "to run. To extend it, ask for more than 2: " +
+                std::string(ANIMAT_BIN_DIR) + "/animat-master --resume --db " +
                 db + " --bind " + Endpoint() + " --heartbeat-ms " +
                 std::to_string(kMasterHeartbeatMs) + " --generations 12"),
             std::string::npos)
@@ -116,8 +116,9 @@ TEST_F(StartupTest, AFinishedRunIsNotServedAgain) {
   std::unique_ptr<ChildProcess> master = Resume(db);
   ASSERT_TRUE(AwaitExit(*master, kStepWait, "a resume of a finished run"));
   EXPECT_EQ(master->exit_code(), 0) << master->output();
-  EXPECT_NE(master->output().find("run 1 is finished (2 generations); to "
-                                  "extend it: animat-master --resume"),
+  EXPECT_NE(master->output().find(
+                "run 1 is finished (2 generations); to extend it: " +
+                std::string(ANIMAT_BIN_DIR) + "/animat-master --resume"),
             std::string::npos)
       << master->output();
   EXPECT_EQ(master->output().find("listening on"), std::string::npos)
@@ -138,10 +139,12 @@ TEST_F(StartupTest, TheResumeHintIsTheWholeCommandAndWorksAsPrinted) {
   ASSERT_TRUE(master->Signal(SIGTERM));
   ASSERT_TRUE(AwaitExit(*master, kStepWait, "SIGTERM"));
   ASSERT_EQ(master->exit_code(), 0) << master->output();
-  const std::string expected = "animat-master --resume --db " + db +
+  // The program as it was started, so that the command runs as printed.
+  const std::string expected = std::string(ANIMAT_BIN_DIR) +
+                               "/animat-master --resume --db " + db +
                                " --bind " + Endpoint() + " --heartbeat-ms " +
                                std::to_string(kMasterHeartbeatMs);
-  const std::string output = master->standard_error();
+  const std::string output = master->standard_output();
   const size_t hint = output.find("stopped; resume with: ");
   ASSERT_NE(hint, std::string::npos) << output;
   std::istringstream line(
@@ -155,7 +158,6 @@ TEST_F(StartupTest, TheResumeHintIsTheWholeCommandAndWorksAsPrinted) {
 
   // As printed (the temporary paths need no quoting): the same workers
   // come back to it, and the run ends.
-  words[0] = std::string(ANIMAT_BIN_DIR) + "/animat-master";
   ChildProcess resumed("animat-master", words,
                        ChildProcess::Lifetime::kExitsByItself);
   ASSERT_TRUE(resumed.started());
@@ -179,13 +181,14 @@ TEST_F(StartupTest, TheResumeHintKeepsTheKeysAndQuotesWhatNeedsIt) {
   ASSERT_TRUE(master->Signal(SIGTERM));
   ASSERT_TRUE(AwaitExit(*master, kStepWait, "SIGTERM"));
   ASSERT_EQ(master->exit_code(), 0) << master->output();
-  EXPECT_NE(master->standard_error().find(
-                "stopped; resume with: animat-master --resume --db '" + db +
+  // The closing line is the master's standard output, all of it.
+  EXPECT_EQ(master->standard_output(),
+            "stopped; resume with: " + std::string(ANIMAT_BIN_DIR) +
+                "/animat-master --resume --db '" + db +
                 "' --bind 'tcp://127.0.0.1:*' --curve-secret " +
                 Path("keys/master.key") + " --curve-allow " +
                 Path("keys/workers.allow") + " --heartbeat-ms " +
-                std::to_string(kMasterHeartbeatMs) + "\n"),
-            std::string::npos)
+                std::to_string(kMasterHeartbeatMs) + "\n")
       << master->output();
 }
 

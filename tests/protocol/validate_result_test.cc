@@ -136,6 +136,25 @@ TEST(ValidateResultTest, RefusesSpreadsThatAreNotFiniteNonNegativeAndOrdered) {
   EXPECT_EQ(Refusal(r), "body spread_minor 3 above spread_major 2.5");
 }
 
+TEST(ValidateResultTest, RefusesADistanceOrEnergyNotFiniteNonNegativeOrNotOk) {
+  v1::EvaluationResult r = OkWithBody();
+  r.set_distance(0.5);
+  r.set_energy(0.0);
+  EXPECT_TRUE(protocol::ValidateResult(r).ok());
+  r.set_energy(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_EQ(Refusal(r), "energy nan");
+  r.set_energy(12.5);
+  r.set_distance(-1.0);
+  EXPECT_EQ(Refusal(r), "distance -1");
+  r.set_distance(std::numeric_limits<double>::infinity());
+  EXPECT_EQ(Refusal(r), "distance inf");
+  r = OkWithBody();
+  r.set_status(v1::EvaluationResult::NUMERICAL_FAILURE);
+  r.clear_fitness();
+  r.set_energy(1.0);
+  EXPECT_EQ(Refusal(r), "energy present without status OK");
+}
+
 TEST(ValidateResultTest, ABadBodyIsRefusedWhateverTheStatus) {
   v1::EvaluationResult r = OkWithBody();
   r.set_status(v1::EvaluationResult::NUMERICAL_FAILURE);

@@ -1,0 +1,222 @@
+#!/usr/bin/env python3
+"""Reads the energy-aware runs' stores (scripts/energy_runs.sh) and the
+replication's d_N = 1 runs (docs/results/replication.json and their bests in
+docs/results/bests/: the distance-only side) and writes what docs/results.md
+reports under "Energy": per run the best's distance, energy and distance per
+energy, its strategy, the last generation's spending, and the generations'
+bests over time.
+
+  scripts/energy_report.py [--out out/energy] [--dest docs/results]
+      [--animat out/energy/bin/animat]
+
+Only Python's standard library; the simulator work is done by `animat`
+(lineage, simulate, analyze). Writes DEST/energy.json (every number),
+DEST/energy.md (the tables) and DEST/energy-dn1.svg (the bests' distance over
+the generations), and the energy-aware bests' genomes and models in
+DEST/bests/. A run still going is reported as far as it has gone.
+"""
+
+import argparse
+import json
+import os
+import re
+import sqlite3
+import statistics
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import replication_report as rr  # noqa: E402  (its store and analysis code)
+
+RUN_NAME = re.compile(r"^energy-dn1-seed([0-9]+)\.db$")
+
+
+def energy_extras(path, run_id, budget):
+    """What the replication's summary lacks: distance and energy of the
+    generations' bests and of the last generation's members."""
+    db = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
+    per_generation = [
+        {"generation": g, "fitness": f, "distance": d, "energy": e}
+        for g, f, d, e in db.execute(
+            "SELECT s.generation, i.fitness, i.distance, i.energy "
+            "FROM generation_statistics s JOIN individuals i "
+            "ON i.run_id = s.run_id AND i.id = s.best_id "
+            "WHERE s.run_id = ? AND s.completed_at IS NOT NULL "
+            "ORDER BY s.generation", (run_id,))]
+    last = per_generation[-1]["generation"]
+    members = [(d, e) for d, e in db.execute(
+        "SELECT i.distance, i.energy FROM members m JOIN individuals i "
+        "ON i.run_id = m.run_id AND i.id = m.id "
+        "WHERE m.run_id = ? AND m.generation = ? AND i.status = 'ok'",
+        (run_id, last))]
+    db.close()
+    distances = [d for d, _ in members]
+    energies = [e for _, e in members]
+    return per_generation, {
+        "ok_members": len(members),
+        "over_budget": sum(1 for e in energies if e > budget),
+        "median_distance": statistics.median(distances) if members else None,
+        "median_energy": statistics.median(energies) if members else None,
+    }
+
+
+def simulate(animat, genome, config):
+    out = rr.run([animat, "simulate", "--genome", genome, "--config", config])
+    values = dict(re.findall(r"^(\w+): (\S+)$", out, re.M))
+    return {k: float(values[k]) for k in ("fitness", "distance", "energy")}
+
+
+def budget_of(model_text):
+    m = re.search(r"energy_budget: ([0-9.e+]+)", model_text)
+    return float(m.group(1)) if m else 10000.0
+
+
+def row(r):
+    a = r["analysis"]
+    f = a.get("features", {})
+
+    def feature(name):
+        v = f.get(name)
+        return f"{v:+.2f}" if isinstance(v, (int, float)) else "—"
+
+    period = (f"{a['period_steps']:.0f}"
+              if isinstance(a.get("period_steps"), (int, float)) else "—")
+    return (f"| {r['name']} | {r['fitness_kind']} | {r['generations']} | "
+            f"{r['best_id']} (g{r['best_generation']}) | "
+            f"{r['distance']:.2f} | {r['energy']:,.0f} | "
+            f"{1000 * r['distance'] / r['energy']:.2f} | "
+            f"{r['energy_fitness']:.2f} | {a['label']} (nearest "
+            f"{a['nearest']}) | {period} | "
+            f"{(a.get('amplitude_mean') or 0):.2f} | {feature('synchrony')} | "
+            f"{feature('coasting')} |")
+
+
+def svg(runs, path):
+    """Best distance per generation, one line per run."""
+    w, h, left, bottom, top, right = 640, 360, 56, 40, 16, 150
+    gmax = max(len(r["curve"]) for r in runs) - 1
+    dmax = max(max(p for p in r["curve"]) for r in runs) * 1.05
+    x = lambda g: left + (w - left - right) * g / max(1, gmax)  # noqa: E731
+    y = lambda d: h - bottom - (h - bottom - top) * d / dmax  # noqa: E731
+    out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{w}" '
+           f'height="{h}" font-family="sans-serif" font-size="11">',
+           f'<rect width="{w}" height="{h}" fill="white"/>',
+           f'<line x1="{left}" y1="{h - bottom}" x2="{w - right}" '
+           f'y2="{h - bottom}" stroke="black"/>',
+           f'<line x1="{left}" y1="{top}" x2="{left}" y2="{h - bottom}" '
+           'stroke="black"/>',
+           f'<text x="{(left + w - right) / 2}" y="{h - 8}" '
+           'text-anchor="middle">generation</text>',
+           f'<text x="14" y="{(top + h - bottom) / 2}" text-anchor="middle" '
+           f'transform="rotate(-90 14 {(top + h - bottom) / 2})">'
+           'distance swum by the best (radii)</text>']
+    for t in range(0, 6):
+        d = dmax * t / 5
+        out.append(f'<text x="{left - 4}" y="{y(d) + 4:.1f}" '
+                   f'text-anchor="end">{d:.0f}</text>')
+    for t in range(0, gmax + 1, max(1, gmax // 5)):
+        out.append(f'<text x="{x(t):.1f}" y="{h - bottom + 14}" '
+                   f'text-anchor="middle">{t}</text>')
+    for i, r in enumerate(runs):
+        colour = "#c0392b" if r["fitness_kind"] == "energy" else "#2c3e50"
+        dash = ["", "6 3", "2 2", "8 2 2 2"][i % 4]
+        points = " ".join(f"{x(g):.1f},{y(d):.1f}"
+                          for g, d in enumerate(r["curve"]))
+        out.append(f'<polyline fill="none" stroke="{colour}" '
+                   f'stroke-dasharray="{dash}" points="{points}"/>')
+        ly = top + 14 * i + 8
+        out.append(f'<line x1="{w - right + 8}" y1="{ly}" x2="{w - right + 30}"'
+                   f' y2="{ly}" stroke="{colour}" stroke-dasharray="{dash}"/>')
+        out.append(f'<text x="{w - right + 34}" y="{ly + 4}">{r["name"]}'
+                   '</text>')
+    out.append("</svg>")
+    with open(path, "w") as f:
+        f.write("\n".join(out) + "\n")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--out", default="out/energy")
+    parser.add_argument("--dest", default="docs/results")
+    parser.add_argument("--animat", default=None)
+    args = parser.parse_args()
+    animat = args.animat or os.path.join(args.out, "bin", "animat")
+    os.makedirs(os.path.join(args.dest, "bests"), exist_ok=True)
+
+    runs = []
+    for name in sorted(os.listdir(args.out)):
+        m = RUN_NAME.match(name)
+        if not m:
+            continue
+        path = os.path.join(args.out, name)
+        s = rr.store_summary(path)
+        budget = budget_of(s["model_text"])
+        curve, last = energy_extras(path, s["run_id"], budget)
+        best = s["best"]
+        stem = rr.write_best(animat, path, name[:-3], best["id"],
+                             s["model_text"], args.dest)
+        again = simulate(animat, stem + ".json", stem + ".config.txtpb")
+        if float.hex(again["fitness"]) != float.hex(best["fitness"]):
+            sys.exit(f"{stem}: simulated again, fitness {again['fitness']} "
+                     f"is not the stored {best['fitness']}")
+        runs.append({
+            "name": name[:-3], "fitness_kind": "energy",
+            "seed": int(m.group(1)), "budget": budget,
+            "generations": s["generations"], "best_id": best["id"],
+            "best_generation": best["generation"], "fitness": best["fitness"],
+            "distance": again["distance"], "energy": again["energy"],
+            "energy_fitness": again["fitness"], "genome": stem + ".json",
+            "analysis": rr.analyze(animat, path, best["id"]),
+            "curve": [p["distance"] for p in curve],
+            "per_generation": curve, "last_generation": last,
+        })
+    if not runs:
+        sys.exit(f"no stores energy-dn1-seedS.db in {args.out}")
+    budget = runs[0]["budget"]
+
+    # The distance-only side: the replication's d_N = 1 runs and bests.
+    replication = json.load(open(os.path.join(args.dest, "replication.json")))
+    for r in replication["runs"]:
+        if r["drag"] != 1:
+            continue
+        genome = r["best_genome"]
+        config = genome[:-len(".json")] + ".config.txtpb"
+        again = simulate(animat, genome, config)
+        runs.append({
+            "name": r["name"], "fitness_kind": "distance", "seed": r["seed"],
+            "generations": r["generations"], "best_id": r["best"]["id"],
+            "best_generation": r["best"]["generation"],
+            "fitness": r["best"]["fitness"], "distance": again["distance"],
+            "energy": again["energy"],
+            "energy_fitness": again["distance"] * min(
+                1.0, budget / again["energy"]) if again["energy"] > 0
+            else again["distance"],
+            "genome": genome, "analysis": r["best_analysis"],
+            "curve": [x["best_fitness"] for x in r["stats"]],
+        })
+
+    lines = [
+        "| run | fitness | generations | best (generation) | distance | "
+        "energy | distance per 1000 energy | energy-aware fitness | strategy |"
+        " period (steps) | amplitude | synchrony | coasting |",
+        "|---|---|---:|---|---:|---:|---:|---:|---|---:|---:|---:|---:|"]
+    lines += [row(r) for r in runs]
+    lines += ["", "| run | ok members, last generation | above the budget | "
+              "median distance | median energy |", "|---|---:|---:|---:|---:|"]
+    for r in runs:
+        last = r.get("last_generation")
+        if last:
+            lines.append(
+                f"| {r['name']} | {last['ok_members']} | "
+                f"{last['over_budget']} | {last['median_distance']:.2f} | "
+                f"{last['median_energy']:,.0f} |")
+    with open(os.path.join(args.dest, "energy.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    with open(os.path.join(args.dest, "energy.json"), "w") as f:
+        json.dump({"budget": budget, "runs": runs}, f, indent=2)
+        f.write("\n")
+    svg(runs, os.path.join(args.dest, "energy-dn1.svg"))
+    print(f"wrote {args.dest}/energy.md, energy.json, energy-dn1.svg")
+
+
+if __name__ == "__main__":
+    main()
