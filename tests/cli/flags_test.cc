@@ -234,6 +234,15 @@ TEST_F(FlagsTest, AnalysisCommands) {
   for (const char* kind : {"strip", "activity", "cells"}) {
     TryEveryFlag(std::string("figure ") + kind, figure, {"--output"});
   }
+  const std::string guidance = Path("guidance.txtpb");
+  ASSERT_TRUE(WriteFile(guidance,
+                        "guidance { enabled: true trials: 2 }\n"
+                        "evaluation { motion_steps: 100 }\n")
+                  .ok());
+  TryEveryFlag(
+      "figure guidance",
+      {"--genome", genome_, "--config", guidance, "-o", Path("guidance.svg")},
+      {"--output"});
   TryEveryFlag("figure fitness", {"--db", db_, "-o", Path("fitness.svg")},
                {"--output"});
   TryEveryFlag("figure contact-sheet", {"--db", db_, "-o", Path("sheet.svg")},
