@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
-"""Reads the energy-aware runs' stores (scripts/energy_runs.sh) and the
-replication's d_N = 1 runs (docs/results/replication.json and their bests in
+"""Reads the energy-aware runs' stores (configs/energy.txtpb evolved by
+`scripts/seeded_runs.sh --config configs/energy.txtpb --name energy-dn1`)
+and the replication's d_N = 1 runs (docs/results/replication.json and their bests in
 docs/results/bests/: the distance-only side) and writes what docs/results.md
 reports under "Energy": per run the best's distance, energy and distance per
 energy, its strategy, the last generation's spending, and the generations'
 bests over time.
 
-  scripts/energy_report.py [--out out/energy] [--dest docs/results]
-      [--animat out/energy/bin/animat]
+  scripts/energy_report.py [--out out/energy-dn1] [--dest docs/results]
+      [--animat out/energy-dn1/bin/animat]
 
 Only Python's standard library; the simulator work is done by `animat`
 (lineage, simulate, analyze). Writes DEST/energy.json (every number),
@@ -135,7 +136,7 @@ def svg(runs, path):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--out", default="out/energy")
+    parser.add_argument("--out", default="out/energy-dn1")
     parser.add_argument("--dest", default="docs/results")
     parser.add_argument("--animat", default=None)
     args = parser.parse_args()

@@ -2,20 +2,22 @@
 # One run configuration evolved with several seeds: for each seed S, the
 # configuration with its `seed:` line set to S, one store NAME-seedS.db per
 # run in OUT (default out/NAME), JOBS runs at a time (default: one per
-# core), one worker each. Run it again to continue: each store resumes
-# where it stopped, and a finished run is extended to GENERATIONS.
+# core), one worker each, for the configuration's generations or
+# GENERATIONS. Run it again to continue: each store resumes where it
+# stopped, and a finished run is extended to GENERATIONS.
 #
 #   scripts/seeded_runs.sh --config FILE --name NAME [--generations G]
 #     [--jobs J] [--out DIR] [--seeds "1 2 3"]
 #
-# The guidance runs of docs/results.md ("Active guidance"):
+# The runs of docs/results.md "Energy" and "Active guidance":
+#   scripts/seeded_runs.sh --config configs/energy.txtpb --name energy-dn1
 #   scripts/seeded_runs.sh --config configs/guidance.txtpb --name guidance
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 config=""
 name=""
-generations=100
+generations=""
 jobs="$(nproc)"
 out=""
 seeds="1 2 3"
@@ -64,12 +66,14 @@ done
 
 run_one() {
   local out="$1" bin="$2" generations="$3" run="$4"
+  local extra=()
+  if [[ -n "$generations" ]]; then extra=(--generations "$generations"); fi
   if [[ -f "$out/$run.db" ]]; then
-    "$bin/animat" evolve --db "$out/$run.db" --workers 1 \
-      --generations "$generations" >> "$out/$run.log" 2>&1
+    "$bin/animat" evolve --db "$out/$run.db" --workers 1 "${extra[@]}" \
+      >> "$out/$run.log" 2>&1
   else
     "$bin/animat" evolve --config "$out/$run.txtpb" --db "$out/$run.db" \
-      --workers 1 --generations "$generations" >> "$out/$run.log" 2>&1
+      --workers 1 "${extra[@]}" >> "$out/$run.log" 2>&1
   fi
   echo "$run: $(tail -n 1 "$out/$run.log")"
 }

@@ -303,6 +303,25 @@ TEST(GuidanceConfigTest, ReadsAsAGuidanceRun) {
   EXPECT_EQ(settings->evolution.mutation.input_channels, kInputChannels);
 }
 
+TEST(EnergyConfigTest, IsTheReplicationsDn1RunWithTheEnergyBudget) {
+  Result<RunSettings> settings =
+      ReadRunConfigFile(ConfigsDir() + "/energy.txtpb");
+  ASSERT_TRUE(settings.ok()) << settings.status().ToString();
+  // The replication's d_N = 1 runs (configs/paper.txtpb with RK4, the
+  // integrator they used) for 150 generations, but for the fitness.
+  Result<RunSettings> expected =
+      ReadRunConfigFile(ConfigsDir() + "/paper.txtpb");
+  ASSERT_TRUE(expected.ok());
+  expected->model.physics.drag_normal = 1.0;
+  expected->model.physics.drag_tangential = 0.005;
+  expected->model.physics.integrator = Integrator::kRk4;
+  expected->model.physics.substeps = 1;
+  expected->evolution.generations = 150;
+  expected->model.evaluation.fitness = FitnessKind::kDistanceWithinEnergyBudget;
+  expected->model.evaluation.energy_budget = 10000.0;
+  EXPECT_EQ(Text(*settings), Text(*expected));
+}
+
 TEST(PaperConfigTest, ReadsAsThePapersSetup) {
   Result<RunSettings> settings =
       ReadRunConfigFile(ConfigsDir() + "/paper.txtpb");
