@@ -70,6 +70,13 @@ int Best(const Options& o) {
       std::printf("distance: %s\n", ShortestDouble(*best->swum).c_str());
     if (best->energy)
       std::printf("energy: %s\n", ShortestDouble(*best->energy).c_str());
+    if (!best->source_distances.empty()) {
+      std::string list;
+      for (double d : best->source_distances) {
+        list += (list.empty() ? "" : ", ") + ShortestDouble(d);
+      }
+      std::printf("source_distances: [%s]\n", list.c_str());
+    }
     return 0;
   });
 }

@@ -52,6 +52,14 @@ Result<Summary> Best(Store& store, int64_t run) {
   }
   if (!select->IsNull(11)) best.swum = select->Double(11);
   if (!select->IsNull(12)) best.energy = select->Double(12);
+  Result<sql::Statement> trials = StoreAccess::Database(store).Prepare(
+      "SELECT source_distance FROM trials WHERE run_id = ? AND id = ?"
+      " ORDER BY trial");
+  if (!trials.ok()) return trials.status();
+  trials->Bind(1, run).Bind(2, static_cast<int64_t>(best.id));
+  Status status = trials->ForEachRow(
+      [&] { best.source_distances.push_back(trials->Double(0)); });
+  if (!status.ok()) return status;
   return best;
 }
 

@@ -38,6 +38,10 @@ struct Summary {
   // Best only.
   std::optional<double> swum;
   std::optional<double> energy;
+  // With active guidance, each trial's final distance to its source
+  // (radii), in trial order (schema version 7 on); empty otherwise. Filled
+  // by Best only.
+  std::vector<double> source_distances;
 };
 
 // The run's id: `run` if given, else the latest run. kNotFound if none.

@@ -322,6 +322,20 @@ CREATE VIEW line_of_descent AS
   SELECT line.run_id, line.step, i.id, i.generation, i.operators, i.fitness
   FROM line JOIN individuals i ON i.run_id = line.run_id AND i.id = line.id;
 )sql",
+    // 6 -> 7: with active guidance (docs/model.md §10.2) an evaluation
+    // swims K trials, and its fitness is their mean score; each trial's
+    // final distance to its source gets a row, so that which directions an
+    // animat reaches is a query. Evaluations without guidance, and those
+    // recorded before, have no rows.
+    R"sql(
+CREATE TABLE trials (
+  run_id          INTEGER NOT NULL,
+  id              INTEGER NOT NULL,  -- of an evaluated individual
+  trial           INTEGER NOT NULL,  -- k = 0 ... K - 1
+  source_distance REAL    NOT NULL,  -- d_k at the end of the trial, radii
+  PRIMARY KEY (run_id, id, trial)
+) WITHOUT ROWID;
+)sql",
 };
 
 constexpr int kKnown = static_cast<int>(std::size(kMigrations));

@@ -216,6 +216,8 @@ int64_t Database::last_insert_rowid() const {
   return sqlite3_last_insert_rowid(db_);
 }
 
+int64_t Database::changes() const { return sqlite3_changes64(db_); }
+
 Statement::Statement(Statement&& other) noexcept
     : db_(other.db_),
       statement_(other.statement_),

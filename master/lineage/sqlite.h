@@ -58,6 +58,9 @@ class Database {
   Result<Statement> Cached(std::string_view sql);
 
   int64_t last_insert_rowid() const;
+  // Rows the last INSERT, UPDATE or DELETE on this connection changed (0
+  // for an INSERT OR IGNORE that ignored its row).
+  int64_t changes() const;
   const std::string& path() const { return path_; }
   sqlite3* handle() { return db_; }
 

@@ -333,6 +333,23 @@ Status Store::AddIndividuals(int64_t run,
   return InTransaction(*db_, [&] { return InsertIndividuals(run, batch); });
 }
 
+Status Store::InsertTrials(int64_t run, uint64_t id,
+                           const v1::EvaluationResult& r) {
+  Result<sql::Statement> insert = db_->Cached(
+      "INSERT INTO trials (run_id, id, trial, source_distance)"
+      " VALUES (?1, ?2, ?3, ?4)");
+  if (!insert.ok()) return insert.status();
+  for (int k = 0; k < r.source_distances_size(); ++k) {
+    insert->Bind(1, run)
+        .Bind(2, static_cast<int64_t>(id))
+        .Bind(3, static_cast<int64_t>(k))
+        .Bind(4, r.source_distances(k));
+    Status status = insert->Run();
+    if (!status.ok()) return status;
+  }
+  return Status::Ok();
+}
+
 Status Store::RecordEvaluations(int64_t run,
                                 const std::vector<Evaluation>& batch) {
   return InTransaction(*db_, [&]() -> Status {
@@ -382,6 +399,12 @@ Status Store::RecordEvaluations(int64_t run,
           .Bind(18, optional(r.has_energy(), r.energy()));
       Status s = insert->Run();
       if (!s.ok()) return s;
+      // A guidance evaluation's trials, kept with the evaluation they came
+      // with: only when it was the one recorded.
+      if (r.source_distances_size() > 0 && db_->changes() == 1) {
+        s = InsertTrials(run, e.id, r);
+        if (!s.ok()) return s;
+      }
     }
     return Status::Ok();
   });

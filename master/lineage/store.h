@@ -216,6 +216,8 @@ class Store {
                           const std::string& now);
   Status InsertIndividuals(int64_t run,
                            const std::vector<NewIndividual>& batch);
+  // A guidance evaluation's source distances, one row per trial.
+  Status InsertTrials(int64_t run, uint64_t id, const v1::EvaluationResult& r);
   // Appends to the run's configuration history.
   Status InsertConfigChange(int64_t run, int from_generation,
                             const v1::RunConfig& config,

@@ -351,6 +351,42 @@ TEST_F(IndividualsTest, FirstEvaluationIsKept) {
   EXPECT_EQ(row->fitness, 0.5);
 }
 
+// A guidance evaluation (docs/model.md §10.2) records each trial's final
+// distance to its source; the first evaluation's trials are kept with it,
+// and an evaluation without guidance, or not ok, has none.
+TEST_F(IndividualsTest, GuidanceEvaluationsRecordTheirTrials) {
+  ASSERT_TRUE(
+      store_
+          ->AddIndividuals(run_, {MakeIndividual(0, 0), MakeIndividual(1, 0),
+                                  MakeIndividual(2, 0)})
+          .ok());
+  Evaluation guided = OkEvaluation(0, -1.25);
+  for (double d : {29.5, 31.0, 30.25, 34.25}) {
+    guided.result.add_source_distances(d);
+  }
+  Evaluation again = guided;
+  again.result.set_source_distances(0, 1.0);
+  ASSERT_TRUE(store_
+                  ->RecordEvaluations(run_, {guided, OkEvaluation(1, 0.5),
+                                             FailedEvaluation(2), again})
+                  .ok());
+  EXPECT_EQ(Rows(*store_,
+                 "SELECT id, trial, source_distance FROM trials"
+                 " ORDER BY id, trial"),
+            (Table{{"0", "0", "29.5"},
+                   {"0", "1", "31.0"},
+                   {"0", "2", "30.25"},
+                   {"0", "3", "34.25"}}));
+  // A later duplicate changes nothing either.
+  ASSERT_TRUE(store_->RecordEvaluations(run_, {again}).ok());
+  EXPECT_EQ(Value(*store_, "SELECT SUM(source_distance) FROM trials"), "125.0");
+  // The mean score is the fitness: D - mean d_k with D = 30.
+  EXPECT_EQ(Value(*store_,
+                  "SELECT 30 - AVG(t.source_distance) = i.fitness FROM trials t"
+                  " JOIN individuals i ON i.run_id = t.run_id AND i.id = t.id"),
+            "1");
+}
+
 TEST_F(IndividualsTest, FirstEvaluationInABatchIsKept) {
   ASSERT_TRUE(store_->AddIndividuals(run_, {MakeIndividual(0, 0)}).ok());
   ASSERT_TRUE(store_

@@ -121,6 +121,7 @@ TEST(SchemaTest, NewStoreHasCurrentVersionTablesViewsAndIndexes) {
       {"table", "parents"},
       {"table", "run_configs"},
       {"table", "runs"},
+      {"table", "trials"},
       {"view", "ancestry"},
       {"view", "best"},
       {"view", "generation_statistics"},
@@ -480,6 +481,44 @@ TEST(SchemaTest, Version4StoreGainsItsRunsConfigurationsAsTheirHistory) {
   ASSERT_EQ(history->size(), 2u);
   EXPECT_EQ((*history)[1].change, 1);
   EXPECT_EQ((*history)[1].from_generation, 7);
+}
+
+// A store written by schema version 6 gains the trials table, empty: its
+// evaluations keep every column as they were; guidance results recorded
+// after have their trials.
+TEST(SchemaTest, Version6StoreGainsAnEmptyTrialsTable) {
+  TempStorePath file("v6");
+  {
+    Result<std::unique_ptr<sql::Database>> db =
+        sql::Database::Open(file.path());
+    ASSERT_TRUE(db.ok()) << db.status().ToString();
+    ASSERT_TRUE(Migrate(**db, 6).ok());
+    const Status written = (*db)->Execute(
+        "INSERT INTO runs VALUES (1, 5, x'0a00', 'text', '00000000000000ff',"
+        " 'build', '2026-01-01T00:00:00.000Z', NULL, 'running');"
+        "INSERT INTO births VALUES"
+        " (1, 0, 0, 'random', x'0a0b0c', '0000000000000001', 3, 't0'),"
+        " (1, 1, 0, 'random', x'0a0b0d', '0000000000000002', 3, 't1');"
+        "INSERT INTO evaluations (run_id, id, status, reason, fitness,"
+        " distance, energy) VALUES (1, 0, 'ok', '', 0.5, 0.5, 12.0);");
+    ASSERT_TRUE(written.ok()) << written.ToString();
+  }
+  const std::vector<std::vector<std::string>> before =
+      RawRows(file.path(), "SELECT * FROM individuals ORDER BY id");
+  ASSERT_EQ(before.size(), 2u);
+
+  Result<std::unique_ptr<Store>> store = Store::Open(file.path());
+  ASSERT_TRUE(store.ok()) << store.status().ToString();
+  EXPECT_EQ(UserVersion(file.path()), 7);
+  EXPECT_EQ(Rows(**store, "SELECT * FROM individuals ORDER BY id"), before);
+  EXPECT_EQ(Value(**store, "SELECT COUNT(*) FROM trials"), "0");
+
+  Evaluation guided = ::animat::testing::OkEvaluation(1, 1.0);
+  guided.result.add_source_distances(29.0);
+  guided.result.add_source_distances(29.0);
+  ASSERT_TRUE((*store)->RecordEvaluations(1, {guided}).ok());
+  EXPECT_EQ(Rows(**store, "SELECT id, trial FROM trials ORDER BY trial"),
+            (std::vector<std::vector<std::string>>{{"1", "0"}, {"1", "1"}}));
 }
 
 // An individual of a realistic genome (about 1 kB) costs about its size on

@@ -504,6 +504,77 @@ TEST_F(EvolveCliTest, StoreRecordsTheBodyOfEveryEvaluation) {
             0);
 }
 
+// A guidance run (docs/model.md §10.2) records each ok evaluation's trials:
+// their final distances to the sources are those of the genome evaluated
+// here again, and `lineage best` prints the best's.
+TEST_F(EvolveCliTest, GuidanceRunRecordsEveryTrial) {
+  config_ = Path("guidance.txtpb");
+  ASSERT_TRUE(WriteFile(config_,
+                        "model {\n"
+                        "  development { max_cells: 8 }\n"
+                        "  evaluation { equilibration_steps: 50"
+                        " motion_steps: 200 }\n"
+                        "  guidance { enabled: true trials: 2 }\n"
+                        "}\n"
+                        "evolution { seed: 3 population: 4 generations: 2"
+                        " elite: 1 initial_min_fitness: 0 }\n")
+                  .ok());
+  db_ = Path("guidance.db");
+  Evolve(2);
+  if (HasFatalFailure()) return;
+
+  v1::RunConfig stored;
+  ASSERT_TRUE(stored.ParseFromString(
+      BlobBytes(QueryCell(db_, "SELECT config FROM runs"))));
+  ModelConfig model;
+  ASSERT_TRUE(ConfigFromProto(stored.model(), &model).ok());
+  const std::vector<SqlRow> ok = QueryRows(
+      db_,
+      "SELECT id, genome FROM individuals WHERE status = 'ok' ORDER BY id");
+  ASSERT_GE(ok.size(), 4u);
+  for (const SqlRow& row : ok) {
+    SCOPED_TRACE("individual " + row[0]);
+    v1::Genome message;
+    ASSERT_TRUE(message.ParseFromString(BlobBytes(row[1])));
+    Result<Genome> genome = GenomeFromProto(message);
+    ASSERT_TRUE(genome.ok()) << genome.status().ToString();
+    const EvaluationResult result = Evaluate(*genome, model);
+    ASSERT_EQ(result.source_distances.size(), 2u);
+    std::vector<SqlRow> expected;
+    for (size_t k = 0; k < result.source_distances.size(); ++k) {
+      expected.push_back(
+          {std::to_string(k), RealBits(result.source_distances[k])});
+    }
+    EXPECT_EQ(
+        QueryRows(db_, "SELECT trial, source_distance FROM trials WHERE id = " +
+                           row[0] + " ORDER BY trial"),
+        expected);
+  }
+  EXPECT_EQ(QueryInt(db_,
+                     "SELECT COUNT(*) FROM trials t JOIN individuals i"
+                     " ON i.run_id = t.run_id AND i.id = t.id"
+                     " WHERE i.status IS NOT 'ok'"),
+            0);
+
+  std::string out, err;
+  ASSERT_EQ(Animat({"lineage", "best", "--db", db_}, &out, &err), 0) << err;
+  const std::string best_id = Fields(out)["id"];
+  const std::vector<SqlRow> trials = QueryRows(
+      db_, "SELECT source_distance FROM trials WHERE id = " + best_id +
+               " ORDER BY trial");
+  ASSERT_EQ(trials.size(), 2u);
+  const std::string printed = Fields(out)["source_distances"];
+  ASSERT_GE(printed.size(), 2u) << out;
+  const std::vector<std::string> values =
+      CsvFields(printed.substr(1, printed.size() - 2));
+  ASSERT_EQ(values.size(), 2u) << out;
+  for (size_t k = 0; k < 2; ++k) {
+    std::string value = values[k];
+    value.erase(0, value.find_first_not_of(' '));
+    EXPECT_EQ(RealCell(value), trials[k][0]) << out;
+  }
+}
+
 // A store written by schema version 2 or 3 (the same run, its rows copied
 // into that version's schema) is refused by the questions with a pointer to
 // `animat lineage upgrade`, which brings it to this build's schema: then it
