@@ -20,6 +20,10 @@
 // The workers are this build's animat-worker (ANIMAT_WORKER_PATH), started
 // with posix_spawn (bench/worker_processes.h); their log goes to
 // --worker-log.
+//
+// Exit 0 when every part ran; 1 when a file named (--worker, --worker-log,
+// --genomes) cannot serve, said before any part runs, or when a part
+// fails; 2 on a usage error, a malformed value included.
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -28,6 +32,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 #include <zmq.hpp>
@@ -36,6 +41,7 @@
 
 #include "bench/timing.h"
 #include "bench/worker_processes.h"
+#include "cli/options.h"
 #include "common/evaluation/model_config.h"
 #include "common/genome/genome_proto.h"
 #include "common/io/proto_file.h"
@@ -226,18 +232,27 @@ bool DispatchPart(const Options& options) {
   return true;
 }
 
-bool EvaluatePart(const Options& options) {
+// The genomes of --genomes, each read and checked, or why one is not a
+// genome (naming the flag and the file).
+Result<std::vector<v1::Genome>> ReadGenomes(
+    const std::vector<std::string>& paths) {
   std::vector<v1::Genome> genomes;
-  for (const std::string& path : options.genomes) {
+  for (const std::string& path : paths) {
     v1::Genome genome;
-    const Status status = ReadProtoFile(path, &genome);
-    if (!status.ok() || !GenomeFromProto(genome).ok()) {
-      std::fprintf(stderr, "%s: %s\n", path.c_str(),
-                   status.ok() ? "invalid genome" : status.ToString().c_str());
-      return false;
+    // A read error names the file; a genome's does not.
+    if (Status status = ReadProtoFile(path, &genome); !status.ok()) {
+      return status.WithPrefix("--genomes");
+    }
+    if (Status status = GenomeFromProto(genome).status(); !status.ok()) {
+      return status.WithPrefix("--genomes " + path);
     }
     genomes.push_back(genome);
   }
+  return genomes;
+}
+
+bool EvaluatePart(const Options& options,
+                  const std::vector<v1::Genome>& genomes) {
   std::printf(
       "evaluation throughput: %d evaluations of %zu genomes (repeated), "
       "default configuration\n",
@@ -347,11 +362,31 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--verbose", options.verbose,
                "The dispatcher's log on stderr, and more figures");
-  CLI11_PARSE(app, argc, argv);
+  if (const std::optional<int> code = animat::cli::ParseCommandLine(
+          app, argc, argv, "animat-dispatch-bench")) {
+    return *code;
+  }
+  // Every file named is checked before any part runs.
+  if (const animat::Status status =
+          animat::bench::CheckWorkerFiles(options.worker, options.worker_log);
+      !status.ok()) {
+    std::fprintf(stderr, "animat-dispatch-bench: %s\n",
+                 status.message().c_str());
+    return 1;
+  }
+  const animat::Result<std::vector<animat::v1::Genome>> genomes =
+      animat::ReadGenomes(options.genomes);
+  if (!genomes.ok()) {
+    std::fprintf(stderr, "animat-dispatch-bench: %s\n",
+                 genomes.status().message().c_str());
+    return 1;
+  }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // Each figure as it comes.
 
   bool ok = true;
   if (options.part != "evaluate") ok = animat::DispatchPart(options) && ok;
-  if (options.part != "dispatch") ok = animat::EvaluatePart(options) && ok;
+  if (options.part != "dispatch") {
+    ok = animat::EvaluatePart(options, *genomes) && ok;
+  }
   return ok ? 0 : 1;
 }

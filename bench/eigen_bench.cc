@@ -143,4 +143,4 @@ BENCHMARK_TEMPLATE(BM_LevelUpdate, float)->DenseRange(0, 1);
 }  // namespace
 }  // namespace animat
 
-BENCHMARK_MAIN();
+// main: bench/benchmark_main.cc, which checks the command line first.

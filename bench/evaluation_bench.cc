@@ -390,4 +390,4 @@ BENCHMARK_TEMPLATE(BM_GrnStep, float)
 }  // namespace
 }  // namespace animat
 
-BENCHMARK_MAIN();
+// main: bench/benchmark_main.cc, which checks the command line first.

@@ -27,6 +27,10 @@
 // every individual evaluated, with its expected fitness, a worker and a
 // time; every offspring with its parents; every generation complete, with
 // its ranked members. A failed check exits 1.
+//
+// Exit 0 when the run finished and checked; 1 when it did not, or when
+// --worker, --worker-log or --db cannot serve (said before the run);
+// 2 on a usage error (a malformed value, an endpoint beyond loopback).
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -36,6 +40,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 #include <zmq.hpp>
@@ -46,6 +51,8 @@
 #include "bench/null_scoring.h"
 #include "bench/timing.h"
 #include "bench/worker_processes.h"
+#include "cli/options.h"
+#include "common/protocol/endpoint.h"
 #include "master/dispatch/dispatcher.h"
 #include "master/lineage/queries.h"
 #include "master/lineage/store.h"
@@ -160,6 +167,22 @@ Result<Counts> Verify(const std::string& path, int64_t run,
 }
 
 int Bench(const Options& options) {
+  const LogSink quiet = [](std::string_view) {};
+  DispatcherOptions dispatcher_options;
+  dispatcher_options.endpoint = options.endpoint;
+  dispatcher_options.accept_null_workers = true;
+  dispatcher_options.acknowledge_on_receipt = false;  // As animat-master.
+  dispatcher_options.heartbeat_ms = options.heartbeat_ms;
+  dispatcher_options.log =
+      options.verbose ? Prefixed("dispatcher", StderrSink) : quiet;
+  // What the dispatcher would refuse is refused before the store is made.
+  if (const Status status = Dispatcher::CheckOptions(dispatcher_options);
+      !status.ok()) {
+    std::fprintf(stderr, "animat-master-bench: --endpoint: %s\n",
+                 status.message().c_str());
+    return 2;
+  }
+
   const bool temporary = options.db.empty();
   std::string path = options.db;
   if (temporary) {
@@ -168,7 +191,6 @@ int Bench(const Options& options) {
            "/animat-master-bench-" + std::to_string(getpid()) + ".db";
     RemoveStore(path);
   }
-  const LogSink quiet = [](std::string_view) {};
   const LogSink log = options.verbose ? Prefixed("master", StderrSink) : quiet;
 
   RunSettings settings;
@@ -184,7 +206,8 @@ int Bench(const Options& options) {
 
   Result<std::unique_ptr<lineage::Store>> store = lineage::Store::Open(path);
   if (!store.ok()) {
-    std::fprintf(stderr, "%s\n", store.status().ToString().c_str());
+    std::fprintf(stderr, "animat-master-bench: %s%s\n",
+                 temporary ? "" : "--db: ", store.status().message().c_str());
     return 1;
   }
   Result<std::unique_ptr<EvolutionRun>> run =
@@ -196,13 +219,6 @@ int Bench(const Options& options) {
   const int64_t run_id = (*run)->run_id();
 
   zmq::context_t context(1);
-  DispatcherOptions dispatcher_options;
-  dispatcher_options.endpoint = options.endpoint;
-  dispatcher_options.accept_null_workers = true;
-  dispatcher_options.acknowledge_on_receipt = false;  // As animat-master.
-  dispatcher_options.heartbeat_ms = options.heartbeat_ms;
-  dispatcher_options.log =
-      options.verbose ? Prefixed("dispatcher", StderrSink) : quiet;
   Result<std::unique_ptr<Dispatcher>> dispatcher = Dispatcher::Create(
       &context, dispatcher_options, ConfigToProto((*run)->model_config()));
   if (!dispatcher.ok()) {
@@ -320,8 +336,14 @@ int main(int argc, char** argv) {
                  "The lineage store to write (a new file, kept); default: a "
                  "temporary file in $TMPDIR or /tmp, removed afterwards");
   app.add_option("--endpoint", options.endpoint,
-                 "Where the dispatcher binds (tcp://... or ipc://...)")
-      ->capture_default_str();
+                 "Where the dispatcher binds: tcp://HOST:PORT or ipc://PATH "
+                 "(on this machine)")
+      ->capture_default_str()
+      ->check([](const std::string& endpoint) {
+        return animat::protocol::CheckEndpoint(
+                   endpoint, animat::protocol::EndpointUse::kBind)
+            .message();
+      });
   app.add_option("--heartbeat-ms", options.heartbeat_ms,
                  "Heartbeat interval (longer under a profiler)")
       ->check(CLI::Range(10, 600000))
@@ -333,7 +355,16 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--verbose", options.verbose,
                "The master's and dispatcher's log on stderr");
-  CLI11_PARSE(app, argc, argv);
+  if (const std::optional<int> code = animat::cli::ParseCommandLine(
+          app, argc, argv, "animat-master-bench")) {
+    return *code;
+  }
+  if (const animat::Status status =
+          animat::bench::CheckWorkerFiles(options.worker, options.worker_log);
+      !status.ok()) {
+    std::fprintf(stderr, "animat-master-bench: %s\n", status.message().c_str());
+    return 1;
+  }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // Each figure as it comes.
   google::protobuf::SetLogHandler(nullptr);
   return animat::Bench(options);

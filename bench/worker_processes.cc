@@ -1,11 +1,44 @@
 #include "bench/worker_processes.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 
 #include "bench/timing.h"
 
 namespace animat::bench {
+
+Status CheckWorkerFiles(const std::string& binary, const std::string& log) {
+  struct stat info;
+  if (stat(binary.c_str(), &info) != 0) {
+    return Status::InvalidArgument("--worker " + binary + ": " +
+                                   std::strerror(errno));
+  }
+  if (!S_ISREG(info.st_mode)) {
+    return Status::InvalidArgument("--worker " + binary +
+                                   ": not a file (expected the animat-worker "
+                                   "binary)");
+  }
+  if (access(binary.c_str(), X_OK) != 0) {
+    return Status::InvalidArgument("--worker " + binary +
+                                   ": not executable: " + std::strerror(errno));
+  }
+  // The workers append to it (master/run/local_workers.h).
+  const int fd =
+      open(log.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    return Status::InvalidArgument(
+        "--worker-log " + log +
+        ": cannot append to it: " + std::strerror(errno));
+  }
+  close(fd);
+  return Status::Ok();
+}
 
 WorkerProcesses::WorkerProcesses(std::string binary, std::string log,
                                  Dispatcher* dispatcher)

@@ -10,10 +10,17 @@
 
 #include <string>
 
+#include "common/base/status.h"
 #include "master/dispatch/dispatcher.h"
 #include "master/run/local_workers.h"
 
 namespace animat::bench {
+
+// What a benchmark checks before it starts: that `binary` (its --worker)
+// is a file it may execute and that `log` (its --worker-log) can be opened
+// for appending, which creates it if it does not exist. kInvalidArgument
+// naming the flag and the path, and saying what is wrong, otherwise.
+Status CheckWorkerFiles(const std::string& binary, const std::string& log);
 
 class WorkerProcesses {
  public:

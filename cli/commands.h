@@ -29,13 +29,6 @@ Command AddConfigCommand(CLI::App& app);
 // Prints "animat: <message>" to stderr and returns 1.
 int Fail(const std::string& message);
 
-// The first option value of `app`'s parse (its parsed subcommands
-// included) that no command takes: an empty value, a whole number beyond
-// 64 bits, or a number that is not finite (nan, inf, an overflowing
-// exponent). CLI11's own checks let these through. Returns a message
-// naming the option, or "" when every value is well formed.
-std::string MalformedOptionValue(const CLI::App& app);
-
 // Accepts only a whole number from 0 to `max` in decimal digits (no sign,
 // no fraction), so that "-3" is refused rather than read as 2^64 - 3; the
 // message calls it `noun`. For ids of individuals; runs take

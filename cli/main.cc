@@ -1,9 +1,11 @@
 // animat: develop, simulate and inspect animats (docs/formats.md).
 #include <iostream>
 #include <map>
+#include <optional>
 #include <string>
 
 #include "cli/commands.h"
+#include "cli/options.h"
 #include "common/kernels/isa.h"
 #include "common/protocol/protocol.h"
 
@@ -26,17 +28,9 @@ int main(int argc, char** argv) {
   commands["keygen"] = animat::cli::AddKeygenCommand(app);
   commands["render"] = animat::cli::AddRenderCommand(app);
   commands["config"] = animat::cli::AddConfigCommand(app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
-  }
-  if (const std::string why = animat::cli::MalformedOptionValue(app);
-      !why.empty()) {
-    std::cerr << "animat: " << why
-              << "\nRun with --help for more information.\n";
-    return 2;
+  if (const std::optional<int> code =
+          animat::cli::ParseCommandLine(app, argc, argv, "animat")) {
+    return *code;
   }
   // A mistyped ANIMAT_ISA is refused, not silently replaced.
   if (const animat::Result<animat::Isa> isa = animat::IsaFromEnvironment();

@@ -10,12 +10,14 @@
 // SIGTERM or SIGINT: commits what came in, leaves a resumable store and
 // exits 0. Exit 1 on an error (the message says what), 2 on a usage error.
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <google/protobuf/stubs/logging.h>
 #include <CLI/CLI.hpp>
 
+#include "cli/options.h"
 #include "common/protocol/endpoint.h"
 #include "master/progress.h"
 #include "master/run/session.h"
@@ -88,11 +90,9 @@ int main(int argc, char** argv) {
   bool resume = false;
   CLI::App app{"animat-master: evolves animats with workers over ZeroMQ"};
   AddOptions(app, o, resume);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+  if (const std::optional<int> code =
+          animat::cli::ParseCommandLine(app, argc, argv, "animat-master")) {
+    return *code;
   }
   google::protobuf::SetLogHandler(nullptr);
   o.choice = resume ? animat::RunChoice::kResume : animat::RunChoice::kStart;

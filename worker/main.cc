@@ -13,12 +13,14 @@
 // 0 once RESULT is written, 2 when it cannot be.
 #include <csignal>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <thread>
 
 #include <google/protobuf/stubs/logging.h>
 #include <CLI/CLI.hpp>
 
+#include "cli/options.h"
 #include "common/kernels/isa.h"
 #include "common/protocol/endpoint.h"
 #include "common/security/curve_keys.h"
@@ -102,11 +104,9 @@ int EvaluateOneMain(int argc, char** argv) {
       ->required();
   app.add_option("--result", result, "Where the WorkResult goes (binary)")
       ->required();
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+  if (const std::optional<int> code =
+          animat::cli::ParseCommandLine(app, argc, argv, "animat-worker")) {
+    return *code;
   }
   return animat::EvaluateOne(
       request, result, animat::Prefixed("animat-worker", animat::StderrSink));
@@ -124,11 +124,9 @@ int main(int argc, char** argv) {
   CLI::App app{"animat-worker: evaluates animats for an animat master"};
   KeyFiles keys;
   AddOptions(app, options, keys);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+  if (const std::optional<int> code =
+          animat::cli::ParseCommandLine(app, argc, argv, "animat-worker")) {
+    return *code;
   }
   // A mistyped ANIMAT_ISA is refused, not silently replaced.
   if (const animat::Result<animat::Isa> isa = animat::IsaFromEnvironment();

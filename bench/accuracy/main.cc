@@ -7,16 +7,25 @@
 // configuration (RK4, 16 sub-steps, double) and under every candidate
 // integrator, sub-step count, drag update, precision and backend, and writes
 // accuracy.csv, summary.csv, summary.md and accuracy.svg into --out.
+//
+// Exit 0 once the report is written; 1 when --out cannot be a directory to
+// write in (said before any work), the animat set or a candidate is wrong,
+// or a file cannot be written; 2 on a usage error.
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <system_error>
 #include <vector>
 
 #include "bench/accuracy/experiment.h"
 #include "bench/accuracy/report.h"
+#include "cli/options.h"
 #include "common/io/proto_file.h"
 
 namespace {
@@ -30,7 +39,30 @@ struct Options {
   std::vector<std::string> candidates;
 };
 
+// Makes --out (and its parents) unless it exists, and checks that it is a
+// directory that can be written, before any work; names the flag and the
+// path otherwise.
+animat::Status PrepareOutput(const std::string& out) {
+  std::error_code error;
+  std::filesystem::create_directories(out, error);
+  if (!error && !std::filesystem::is_directory(out, error) && !error) {
+    error = std::make_error_code(std::errc::not_a_directory);
+  }
+  if (!error && access(out.c_str(), W_OK | X_OK) != 0) {
+    error = std::error_code(errno, std::generic_category());
+  }
+  if (error) {
+    return animat::Status::InvalidArgument("--out " + out + ": " +
+                                           error.message());
+  }
+  return animat::Status::Ok();
+}
+
 int Run(const Options& o) {
+  if (const animat::Status status = PrepareOutput(o.out); !status.ok()) {
+    std::cerr << "animat-accuracy: " << status.message() << "\n";
+    return 1;
+  }
   animat::accuracy::ExperimentOptions options;
   options.data_dir = o.data;
   options.quick = o.quick;
@@ -45,13 +77,6 @@ int Run(const Options& o) {
     return 1;
   }
 
-  std::error_code error;
-  std::filesystem::create_directories(o.out, error);
-  if (error) {
-    std::cerr << "animat-accuracy: " << o.out << ": " << error.message()
-              << "\n";
-    return 1;
-  }
   const std::string markdown = animat::accuracy::SummaryMarkdown(*report);
   const std::pair<std::string, std::string> files[] = {
       {"accuracy.csv", animat::accuracy::AccuracyCsv(*report)},
@@ -95,11 +120,9 @@ int main(int argc, char** argv) {
                  "Only these candidates, by label (e.g. R1f,S1f; default: "
                  "all)")
       ->delimiter(',');
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+  if (const std::optional<int> code =
+          animat::cli::ParseCommandLine(app, argc, argv, "animat-accuracy")) {
+    return *code;
   }
   return Run(o);
 }

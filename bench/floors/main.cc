@@ -11,15 +11,20 @@
 // measured time. A floor assumes every operation fully vectorised, no
 // loads, stores, gathers or dependencies: it bounds from below what any
 // implementation of the same operations in the same precision could take.
+//
+// Exit 0 once the table is printed, 1 when --genome is not a genome, 2 on
+// a usage error.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "bench/floors/primitives.h"
+#include "cli/options.h"
 #include "common/body/body.h"
 #include "common/development/development.h"
 #include "common/evaluation/evaluator.h"
@@ -298,11 +303,9 @@ int main(int argc, char** argv) {
       std::string(ANIMAT_BENCH_DATA_DIR) + "/bench-genome.json";
   app.add_option("--genome", genome, "The workload's genome")
       ->capture_default_str();
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+  if (const std::optional<int> code =
+          animat::cli::ParseCommandLine(app, argc, argv, "animat-floors")) {
+    return *code;
   }
   return animat::floors::Run(genome);
 }

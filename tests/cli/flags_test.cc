@@ -3,15 +3,13 @@
 // message, never by a signal or an exception reaching terminate. The flags
 // are read from each command's --help, so a flag added later is tried too;
 // a flag whose value type this test does not know fails it. (animat-master
-// and animat-worker have the same test in tests/master/startup_test.cc.)
+// and animat-worker have the same test in tests/master/startup_test.cc, the
+// developer tools in tests/bench/tools_flags_test.cc.)
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
-#include <map>
-#include <regex>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -21,6 +19,7 @@
 #include "common/genome/genome_proto.h"
 #include "common/io/proto_file.h"
 #include "master/lineage/store.h"
+#include "tests/cli/flag_cases.h"
 #include "tests/cli/run_animat.h"
 #include "tests/test_util.h"
 
@@ -28,51 +27,17 @@ namespace animat {
 namespace {
 
 using ::animat::testing::Animat;
+using ::animat::testing::Flag;
+using ::animat::testing::FlagsInHelp;
+using ::animat::testing::MalformedNumbers;
 using ::animat::testing::Outcome;
-
-std::string Quote(const std::string& word) {
-  std::string out = "'";
-  for (char c : word) {
-    if (c == '\'') {
-      out += "'\\''";
-    } else {
-      out += c;
-    }
-  }
-  return out + "'";
-}
-
-std::string Join(const std::vector<std::string>& words) {
-  std::string line;
-  for (const std::string& word : words) {
-    line += ' ';
-    line += Quote(word);
-  }
-  return line;
-}
-
-// A flag as --help lists it: its long name and the type of its value ("" for
-// a flag that takes none).
-struct Flag {
-  std::string name;
-  std::string type;  // INT, UINT, FLOAT, TEXT, or "".
-};
+using ::animat::testing::Quote;
+using ::animat::testing::TryEveryCase;
 
 std::vector<Flag> FlagsOf(const std::string& command) {
   const Outcome help = Animat(command + " --help");
   EXPECT_EQ(help.exit_code, 0) << command << ": " << help.output;
-  std::vector<Flag> flags;
-  std::istringstream in(help.output);
-  // "  -o,--output TEXT REQUIRED   ..." or "  --json    ..."
-  const std::regex line(
-      R"(^\s+(?:-\w,)?(--[\w-]+)(?: (INT|UINT|FLOAT|TEXT))?)");
-  for (std::string text; std::getline(in, text);) {
-    std::smatch m;
-    if (std::regex_search(text, m, line) && m[1] != "--help") {
-      flags.push_back({m[1], m[2]});
-    }
-  }
-  return flags;
+  return FlagsInHelp(help.output);
 }
 
 class FlagsTest : public ::testing::Test {
@@ -129,22 +94,13 @@ class FlagsTest : public ::testing::Test {
   // The values that no flag of `type` may accept. An output file may be
   // any new path, so it is given only paths that cannot be written.
   std::vector<std::string> Malformed(const Flag& flag, bool output) const {
-    const std::string huge(5000, '9');
-    std::string minus_huge = "-";
-    minus_huge += huge;
-    std::string huge_exponent = huge;
-    huge_exponent += "e999";
-    if (flag.type == "INT" || flag.type == "UINT") {
-      return {"", "abc", "1.5", "1e999", huge, minus_huge};
-    }
-    if (flag.type == "FLOAT") return {"", "abc", "nan", "inf", huge_exponent};
     if (flag.type == "TEXT" && output) {
       return {"", Path("a-directory"), Path("missing/parent/file.json")};
     }
     if (flag.type == "TEXT") {
       return {"", Path("missing.json"), junk_, Path("a-directory")};
     }
-    return {};
+    return MalformedNumbers(flag.type);
   }
 
   // Runs `base` with each flag of `command` (but those in `skip`) given
@@ -153,46 +109,25 @@ class FlagsTest : public ::testing::Test {
                     const std::vector<std::string>& base,
                     const std::vector<std::string>& outputs,
                     const std::vector<std::string>& skip = {}) {
-    const std::vector<Flag> flags = FlagsOf(command);
-    ASSERT_FALSE(flags.empty()) << command;
-    for (const Flag& flag : flags) {
-      if (std::find(skip.begin(), skip.end(), flag.name) != skip.end()) {
-        continue;
+    std::vector<Flag> flags;
+    for (const Flag& flag : FlagsOf(command)) {
+      if (std::find(skip.begin(), skip.end(), flag.name) == skip.end()) {
+        flags.push_back(flag);
       }
-      const bool output =
-          std::find(outputs.begin(), outputs.end(), flag.name) != outputs.end();
+    }
+    TryEveryCase("animat", command, base, flags, [&](const Flag& flag) {
       std::vector<std::vector<std::string>> cases;
       if (flag.type.empty()) {
         cases.push_back({flag.name + "=maybe"});
-      } else {
-        for (const std::string& value : Malformed(flag, output)) {
-          cases.push_back({flag.name, value});
-        }
+        return cases;
       }
-      ASSERT_FALSE(cases.empty()) << command << " " << flag.name << " "
-                                  << flag.type << ": no malformed values";
-      for (const std::vector<std::string>& extra : cases) {
-        // The flag's valid value in `base`, if any, gives way to this one.
-        std::vector<std::string> words;
-        for (size_t i = 0; i < base.size(); ++i) {
-          if (base[i] == flag.name && i + 1 < base.size()) {
-            ++i;
-            continue;
-          }
-          words.push_back(base[i]);
-        }
-        words.insert(words.end(), extra.begin(), extra.end());
-        std::string line = command + Join(words);
-        const Outcome run = Animat(line);
-        if (line.size() > 200) line = line.substr(0, 200) + "...";
-        SCOPED_TRACE(line);
-        EXPECT_TRUE(run.exit_code == 1 || run.exit_code == 2)
-            << "exit " << run.exit_code << ": " << run.output.substr(0, 500);
-        EXPECT_FALSE(run.output.empty());
-        EXPECT_EQ(run.output.find("terminate"), std::string::npos)
-            << run.output.substr(0, 500);
+      const bool output =
+          std::find(outputs.begin(), outputs.end(), flag.name) != outputs.end();
+      for (const std::string& value : Malformed(flag, output)) {
+        cases.push_back({flag.name, value});
       }
-    }
+      return cases;
+    });
   }
 
   std::string dir_, genome_, config_, run_config_, junk_, scene_, trace_, db_;

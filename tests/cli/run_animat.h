@@ -1,5 +1,6 @@
-// Runs the built `animat` tool for the end-to-end tests of tests/cli:
-// its exit code and everything it wrote (stdout and stderr together).
+// Runs a built program of build/bin (`animat`, or a tool beside it) for the
+// end-to-end tests: its exit code and everything it wrote (stdout and
+// stderr together).
 #ifndef ANIMAT_TESTS_CLI_RUN_ANIMAT_H_
 #define ANIMAT_TESTS_CLI_RUN_ANIMAT_H_
 
@@ -15,10 +16,12 @@ struct Outcome {
   std::string output;  // stdout and stderr.
 };
 
-// `arguments` go to a shell after "animat "; quote them accordingly.
-inline Outcome Animat(const std::string& arguments) {
+// Runs build/bin/`program`; `arguments` go to a shell after its name, so
+// quote them accordingly.
+inline Outcome RunTool(const std::string& program,
+                       const std::string& arguments) {
   const std::string command =
-      std::string(ANIMAT_BIN_DIR) + "/animat " + arguments + " 2>&1";
+      std::string(ANIMAT_BIN_DIR) + "/" + program + " " + arguments + " 2>&1";
   Outcome run;
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return run;
@@ -30,6 +33,11 @@ inline Outcome Animat(const std::string& arguments) {
   const int status = pclose(pipe);
   run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return run;
+}
+
+// Runs build/bin/animat with `arguments` (as RunTool).
+inline Outcome Animat(const std::string& arguments) {
+  return RunTool("animat", arguments);
 }
 
 }  // namespace animat::testing
