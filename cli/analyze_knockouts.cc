@@ -26,9 +26,10 @@ Row TableRow(const std::string& name, const KnockoutRun& run,
   Row row = {name, EvalStatusName(r.status)};
   row.push_back(r.fitness ? Fixed("%.5g", *r.fitness) : "-");
   // Exactly 0 (the same bits) apart from a change too small to show.
-  row.push_back(!run.fitness_change        ? "-"
-                : *run.fitness_change == 0 ? "0"
-                                           : Fixed("%+.5g", *run.fitness_change));
+  row.push_back(!run.fitness_change ? "-"
+                : *run.fitness_change == 0
+                    ? "0"
+                    : Fixed("%+.5g", *run.fitness_change));
   row.push_back(r.distance ? Fixed("%.5g", *r.distance) : "-");
   switch (run.knockout.kind) {
     case Knockout::Kind::kNone:
@@ -66,7 +67,8 @@ std::string KnockoutTable(const KnockoutReport& report) {
     const std::string name =
         run.knockout.kind == Knockout::Kind::kChemical
             ? "CHEMICAL"
-            : "M of node " + std::to_string(run.knockout.node);
+            : "M of unit_" + std::to_string(run.unit_element) + " (node " +
+                  std::to_string(run.knockout.node) + ")";
     rows.push_back(TableRow(name, run, report));
   }
   std::vector<size_t> width(rows[0].size(), 0);
@@ -80,7 +82,8 @@ std::string KnockoutTable(const KnockoutReport& report) {
     std::string line;
     for (size_t c = 0; c < row.size(); ++c) {
       line += row[c];
-      if (c + 1 < row.size()) line += std::string(width[c] - row[c].size() + 2, ' ');
+      if (c + 1 < row.size())
+        line += std::string(width[c] - row[c].size() + 2, ' ');
     }
     line.erase(line.find_last_not_of(' ') + 1);
     text += line + "\n";

@@ -43,6 +43,7 @@ v1::Knockout RunToProto(const KnockoutRun& run) {
     case Knockout::Kind::kMorphogen:
       m.set_kind(v1::Knockout::MORPHOGEN);
       m.set_node(run.knockout.node);
+      m.set_unit_element(run.unit_element);
       m.set_chemical_path(run.chemical_path);
       m.set_actuator_path(run.actuator_path);
       break;
@@ -120,6 +121,7 @@ KnockoutReport RunKnockouts(const Genome& genome, const ModelConfig& config,
       KnockoutRun run;
       run.knockout.kind = Knockout::Kind::kMorphogen;
       run.knockout.node = node;
+      run.unit_element = network.nodes()[node].first_element;
       run.chemical_path = ChemicalReaches(network, node);
       run.actuator_path =
           MorphogenReachesActuators(genome, network, config.grn, node);

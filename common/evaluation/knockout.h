@@ -36,6 +36,9 @@ bool MorphogenReachesActuators(const Genome& genome, const Network& network,
 
 struct KnockoutRun {
   Knockout knockout;
+  // kMorphogen: the genome index of the unit's first element, which names
+  // it in `animat grn` (unit_I); otherwise -1.
+  int unit_element = -1;
   EvaluationResult result;
   // result's fitness less the intact one's, when both have one.
   std::optional<double> fitness_change;

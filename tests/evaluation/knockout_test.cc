@@ -50,9 +50,9 @@ Genome RelaySwimmer() {
   Genome genome = Swimmer();
   const Element expand = ExpandOutput(genome);
   genome.elements.push_back(In(InputChannel::kChemical, 50.0, 50.0));
-  genome.elements.push_back(P(50.0, 50.0));   // A
+  genome.elements.push_back(P(50.0, 50.0));  // A
   genome.elements.push_back(GMor(60.0, 60.0));
-  genome.elements.push_back(P(60.0, 60.0));   // B
+  genome.elements.push_back(P(60.0, 60.0));  // B
   genome.elements.push_back(GInt(expand.x, expand.y, expand.sign));
   return genome;
 }
@@ -246,7 +246,8 @@ TEST(KnockoutTest, AKnockoutChangesNothingBeforeMotion) {
   for (const Knockout& knockout : knockouts) {
     SCOPED_TRACE(knockout.node);
     Recorder recorder;
-    const EvaluationResult r = EvaluateWith(genome, config, knockout, &recorder);
+    const EvaluationResult r =
+        EvaluateWith(genome, config, knockout, &recorder);
     ASSERT_EQ(r.status, EvalStatus::kOk) << r.reason;
     EXPECT_EQ(recorder.before.value(), intact_recorder.before.value());
     EXPECT_EQ(r.cells, intact.cells);
@@ -289,7 +290,8 @@ TEST(KnockoutTest, SilencingTheRelayMorphogenCutsTheChemicalOff) {
   const Genome genome = RelaySwimmer();
   const ModelConfig config = GuidanceConfig();
   const Network network = Network::Build(genome, config.grn);
-  const int relay = NodeOf(network, static_cast<int>(Swimmer().elements.size()) + 1);
+  const int relay =
+      NodeOf(network, static_cast<int>(Swimmer().elements.size()) + 1);
   EXPECT_TRUE(ChemicalReaches(network, relay));
   EXPECT_TRUE(MorphogenReachesActuators(genome, network, config.grn, relay));
   EvaluateOptions all;
@@ -316,7 +318,8 @@ TEST(KnockoutTest, TheReportNamesEachKnockoutAndItsPaths) {
   const Genome genome = RelaySwimmer();
   const ModelConfig config = GuidanceConfig(2);
   const Network network = Network::Build(genome, config.grn);
-  const int relay = NodeOf(network, static_cast<int>(Swimmer().elements.size()) + 1);
+  const int relay =
+      NodeOf(network, static_cast<int>(Swimmer().elements.size()) + 1);
   const KnockoutReport report = RunKnockouts(genome, config, 1);
   EXPECT_TRUE(report.guidance);
   ASSERT_EQ(report.intact.status, EvalStatus::kOk);
@@ -342,8 +345,7 @@ TEST(KnockoutTest, TheReportNamesEachKnockoutAndItsPaths) {
     ASSERT_EQ(run.result.status, EvalStatus::kOk);
     EXPECT_EQ(Bits(run.fitness_change),
               Bits(*run.result.fitness - *report.intact.fitness));
-    ExpectSameBits(run.result,
-                   EvaluateWith(genome, config, run.knockout));
+    ExpectSameBits(run.result, EvaluateWith(genome, config, run.knockout));
   }
   const v1::KnockoutAnalysis m = KnockoutReportToProto(report);
   EXPECT_TRUE(m.guidance());
@@ -355,7 +357,11 @@ TEST(KnockoutTest, TheReportNamesEachKnockoutAndItsPaths) {
   EXPECT_FALSE(m.knockout(0).has_chemical_path());
   EXPECT_TRUE(m.knockout(0).actuator_path());
   EXPECT_EQ(m.knockout(1).kind(), v1::Knockout::MORPHOGEN);
+  EXPECT_FALSE(m.knockout(0).has_node());
   EXPECT_EQ(m.knockout(1).node(), nodes[0]);
+  EXPECT_EQ(m.knockout(1).unit_element(),
+            network.nodes()[nodes[0]].first_element);
+  EXPECT_EQ(report.runs[1].unit_element, m.knockout(1).unit_element());
   EXPECT_EQ(m.knockout(1).result().source_distances_size(), 2);
   EXPECT_EQ(m.knockout(1).fitness_change(), *report.runs[1].fitness_change);
 }
@@ -373,8 +379,8 @@ TEST(KnockoutTest, AChemicalThatBindsNothingReachesNothing) {
   EXPECT_NE(report.runs[0].result.state_hash, report.intact.state_hash);
   EXPECT_EQ(Bits(report.runs[0].fitness_change), Bits(0.0));
   for (const KnockoutRun& run : report.runs) {
-    EXPECT_FALSE(run.chemical_path && run.knockout.kind ==
-                                          Knockout::Kind::kMorphogen)
+    EXPECT_FALSE(run.chemical_path &&
+                 run.knockout.kind == Knockout::Kind::kMorphogen)
         << run.knockout.node;
   }
 }
