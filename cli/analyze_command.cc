@@ -1,16 +1,22 @@
 // animat analyze (--genome FILE [--config FILE] | --db FILE --individual ID
 //   [--run R] | --trace FILE) [--from STEP] [--to STEP] [-o FILE]
+// animat analyze ... --knockouts [--threads N] [-o FILE]
 //
 // Body axes, activity along them, dominant period and amplitude of
 // actuation, phase lags, driver cells and the swimming strategy
 // (docs/analysis.md), as an animat.v1.Analysis. With -o FILE it also
-// prints the strategy, its scores and features on standard output.
+// prints the strategy, its scores and features on standard output. With
+// --knockouts, the animat intact and with each input motion can use
+// silenced in turn, as a table (and an animat.v1.KnockoutAnalysis with -o).
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <optional>
 #include <string>
+#include <thread>
 
 #include "analysis/analyze.h"
+#include "cli/analyze_knockouts.h"
 #include "cli/animat_source.h"
 #include "cli/commands.h"
 #include "common/io/proto_file.h"
@@ -23,9 +29,16 @@ struct Options {
   std::optional<int64_t> from;
   std::optional<int64_t> to;
   std::string output = "-";
+  bool output_given = false;
+  bool knockouts = false;
+  int threads = 1;
 };
 
 int Run(const Options& o) {
+  if (o.knockouts) {
+    return RunKnockoutAnalysis(o.source, o.output_given ? o.output : "",
+                               o.threads);
+  }
   if (o.output != "-") {
     Result<ProtoFormat> format = ProtoFormatForPath(o.output);
     if (!format.ok()) return Fail(format.status().message());
@@ -61,15 +74,38 @@ Command AddAnalyzeCommand(CLI::App& app) {
       "Body axes, activity, period, amplitude, phase lags, driver cells "
       "and swimming strategy of an animat (docs/analysis.md)");
   AddAnimatSourceOptions(sub, &o->source);
-  sub->add_option("--from", o->from,
-                  "First motion step analysed (default: half way, or where "
-                  "the animat actuates; docs/analysis.md)");
-  sub->add_option("--to", o->to, "Last motion step analysed (default: last)");
-  sub->add_option("-o,--output", o->output,
-                  "Output file (.json, .txtpb); - for JSON on standard output "
-                  "(otherwise the strategy is printed there)")
-      ->capture_default_str();
-  return [o] { return Run(*o); };
+  CLI::Option* from =
+      sub->add_option("--from", o->from,
+                      "First motion step analysed (default: half way, or "
+                      "where the animat actuates; docs/analysis.md)");
+  CLI::Option* to = sub->add_option(
+      "--to", o->to, "Last motion step analysed (default: last)");
+  CLI::Option* output =
+      sub->add_option("-o,--output", o->output,
+                      "Output file (.json, .txtpb); - for JSON on standard "
+                      "output (otherwise the strategy, or with --knockouts "
+                      "the table, is printed there)")
+          ->capture_default_str();
+  o->threads = static_cast<int>(
+      std::clamp(std::thread::hardware_concurrency(), 1u, 256u));
+  CLI::Option* threads =
+      sub->add_option("--threads", o->threads,
+                      "Evaluations at once with --knockouts (default: the "
+                      "cores; the results do not depend on it)")
+          ->check(CLI::Range(1, 256));
+  sub->add_flag("--knockouts", o->knockouts,
+                "Evaluate the animat intact, then with CHEMICAL (with "
+                "guidance) and each morphogen motion uses silenced during "
+                "motion; a table on standard output (docs/analysis.md, "
+                "Knock-outs)")
+      ->excludes(from)
+      ->excludes(to)
+      ->excludes(sub->get_option("--every"));
+  threads->needs(sub->get_option("--knockouts"));
+  return [o, output] {
+    o->output_given = output->count() > 0;
+    return Run(*o);
+  };
 }
 
 }  // namespace animat::cli

@@ -23,7 +23,7 @@ std::array<Vec2, 3> MaternalSources(const SignalParams& params) {
 
 std::array<double, kInputChannels> InputValuesAt(
     Vec2 p, const std::array<Vec2, 3>& sources, const SignalParams& params) {
-  std::array<double, kInputChannels> values;
+  std::array<double, kInputChannels> values{};  // CHEMICAL: 0.
   for (int k = 0; k < 3; ++k) {
     values[k] = Exp(-Length(p - sources[k]) / params.maternal_length);
   }
@@ -61,6 +61,16 @@ void MorphogenFieldT<S>::Restrict(const std::vector<int>& keep) {
   history_ = std::move(history);
   keep_ = keep;
   morphogens_ = kept;
+}
+
+template <typename S>
+void MorphogenFieldT<S>::Silence(int morphogen, GrnBatchT<S>* grn) {
+  std::vector<int> keep;
+  for (int m : keep_) {
+    if (m != morphogen) keep.push_back(m);
+  }
+  if (keep.size() != keep_.size()) Restrict(keep);
+  std::fill_n(grn->signal_row(morphogen), grn->capacity(), S{0});
 }
 
 template <typename S>

@@ -27,7 +27,8 @@ namespace animat {
 std::array<Vec2, 3> MaternalSources(const SignalParams& params);
 
 // Input channel values at a position: exp(-|p - s_k| / maternal_length)
-// for the three maternal channels, then UNIFORM = 1.
+// for the three maternal channels, then UNIFORM = 1, then CHEMICAL = 0
+// (only guidance's sensing sets it, during motion: model §10.2).
 std::array<double, kInputChannels> InputValuesAt(
     Vec2 p, const std::array<Vec2, 3>& sources, const SignalParams& params);
 
@@ -66,6 +67,12 @@ class MorphogenFieldT {
   // morphogen_nodes(), increasing) are recorded and applied; the others'
   // signals keep their last values. The kept histories carry over.
   void Restrict(const std::vector<int>& keep);
+
+  // From now on `morphogen` (an index into the network's morphogen_nodes(),
+  // in [0, morphogen_count())) is neither recorded nor applied, and its signal
+  // in `grn` reads 0 in every cell: a knock-out (docs/analysis.md), not part of
+  // the model. The other morphogens' signals keep every bit.
+  void Silence(int morphogen, GrnBatchT<S>* grn);
 
   double kernel(int i, int k) const { return kernel_[i * capacity_ + k]; }
   int delay(int i, int k) const { return delay_[i * capacity_ + k]; }

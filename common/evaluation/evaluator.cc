@@ -122,6 +122,15 @@ MotionOutcome RunMotion(const ModelConfig& config, GrnBatchT<S>& grn,
   return outcome;
 }
 
+// M_j of unit `node` reads 0 from now on, when the node makes a morphogen.
+template <typename S>
+void SilenceMorphogen(const Network& network, int node,
+                      MorphogenFieldT<S>* field, GrnBatchT<S>* grn) {
+  if (node < 0 || node >= network.node_count()) return;
+  const int morphogen = network.nodes()[node].morphogen;
+  if (morphogen >= 0) field->Silence(morphogen, grn);
+}
+
 struct TrialOutcome {
   MotionOutcome motion;
   double distance = 0.0;         // The centre of mass moved (radii).
@@ -154,6 +163,9 @@ EvaluationResult RunGuidanceTrials(const ModelConfig& config, const Body& body,
     sources[k] = GuidanceSource(start, k, trials, g.source_distance);
   }
 
+  // A knock-out of the chemical (docs/analysis.md): no sensing, so every
+  // cell's CHEMICAL reads the 0 it read during development.
+  const bool sensing = options.knockout.kind != Knockout::Kind::kChemical;
   std::vector<TrialOutcome> outcomes(trials);
   auto run_trial = [&](int k) {
     Chemical chemical;
@@ -175,8 +187,9 @@ EvaluationResult RunGuidanceTrials(const ModelConfig& config, const Body& body,
         watch_all || k == observed ? observer : nullptr;
     if (watcher) watcher->OnGuidanceTrial(k, sources);
     TrialOutcome& out = outcomes[k];
-    out.motion = RunMotion(config, grn, field, trial_body, stepper,
-                           &trial_state, &chemical, watcher);
+    out.motion =
+        RunMotion(config, grn, field, trial_body, stepper, &trial_state,
+                  sensing ? &chemical : nullptr, watcher);
     if (!out.motion.problem.empty()) return;
     const Vec2 end = CentreOfMass(trial_state);
     out.distance = Length(end - start);
@@ -372,6 +385,12 @@ EvaluationResult RunModel(const Network& network, const ModelConfig& config,
       observer->OnMotionStep(MotionPhase::kEquilibration, step, state, expand,
                              contract);
     }
+  }
+
+  // A knock-out of a morphogen (docs/analysis.md) starts with motion, once:
+  // development and equilibration are the intact animat's.
+  if (options.knockout.kind == Knockout::Kind::kMorphogen) {
+    SilenceMorphogen(network, options.knockout.node, &field, &grn);
   }
 
   // Motion: network running (model §7.7, §8.1); energy counts from here

@@ -112,7 +112,24 @@ class EvaluationObserver {
   }
 };
 
-// How an evaluation runs; the result does not depend on it.
+// An experiment on one animat (docs/analysis.md, "Knock-outs"), not part of
+// the model: one input silenced during motion only, so development and
+// equilibration, and with them the body, are those of the intact animat.
+struct Knockout {
+  enum class Kind {
+    kNone,       // Nothing silenced: the model's evaluation.
+    kChemical,   // The CHEMICAL input reads 0 in every cell (model §10.2).
+    kMorphogen,  // M_j of unit `node` reads 0 in every cell (model §5.2).
+  };
+  Kind kind = Kind::kNone;
+  // With kMorphogen: the unit j, as a node index (model §2.1). A node that
+  // makes no morphogen, or whose morphogen motion does not compute (model
+  // §11.2), has no M_j to silence: the evaluation is then the intact one.
+  int node = -1;
+};
+
+// How an evaluation runs. The result does not depend on it, except through
+// `knockout`.
 struct EvaluateOptions {
   // Threads for the guidance trials (model §10.2), >= 1: trials run
   // concurrently on copies of the equilibrated state and are summed in
@@ -123,6 +140,9 @@ struct EvaluateOptions {
   // every trial in turn, in trial order, all on the calling thread.
   static constexpr int kAllTrials = -1;
   int observed_trial = 0;
+  // What to silence during motion; kNone (the default) costs nothing and
+  // leaves every bit of the model's evaluation as it is.
+  Knockout knockout;
 };
 
 // Evaluates `genome` under `config` (which must have passed

@@ -11,6 +11,7 @@
 
 #include "animat/v1/analysis.pb.h"
 #include "animat/v1/trace.pb.h"
+#include "common/base/text.h"
 #include "common/io/proto_file.h"
 #include "master/lineage/store.h"
 #include "tests/cli/run_animat.h"
@@ -211,6 +212,147 @@ TEST(AnalysisCliTest, BadInputIsAClearError) {
   EXPECT_NE(not_svg.output.find(".svg"), std::string::npos);
 }
 
+// Knock-outs (docs/analysis.md): a genome of a guidance run's initial
+// population, with a CHEMICAL input and five morphogens that motion uses.
+std::string GuidedGenome() {
+  return testing::TestData("genomes/guidance-seed1-103991.json");
+}
+
+std::string GuidanceConfig() {
+  const std::string path = Temp("guidance.txtpb");
+  EXPECT_TRUE(WriteFile(path,
+                        "guidance { enabled: true trials: 3 }\n"
+                        "evaluation { motion_steps: 600 }\n")
+                  .ok());
+  return path;
+}
+
+std::vector<std::string> Lines(const std::string& text) {
+  std::vector<std::string> lines;
+  size_t start = 0;
+  for (size_t end; (end = text.find('\n', start)) != std::string::npos;
+       start = end + 1) {
+    lines.push_back(text.substr(start, end - start));
+  }
+  return lines;
+}
+
+bool StartsWith(const std::string& text, const std::string& prefix) {
+  return text.rfind(prefix, 0) == 0;
+}
+
+TEST(AnalysisCliTest, KnockoutsPrintATableAndWriteTheFile) {
+  const std::string source =
+      "analyze --genome " + GuidedGenome() + " --config " + GuidanceConfig();
+  const Outcome run =
+      Animat(source + " --knockouts --threads 2 -o " + Temp("ko.json"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  v1::KnockoutAnalysis k;
+  ASSERT_TRUE(ReadProtoFile(Temp("ko.json"), &k).ok());
+  EXPECT_TRUE(k.guidance());
+  EXPECT_EQ(k.intact().kind(), v1::Knockout::NONE);
+  EXPECT_FALSE(k.intact().has_node());
+  ASSERT_EQ(k.intact().result().status(), v1::EvaluationResult::OK);
+  EXPECT_EQ(k.intact().result().source_distances_size(), 3);
+  ASSERT_EQ(k.knockout_size(), 6);  // CHEMICAL and five morphogens.
+  EXPECT_EQ(k.knockout(0).kind(), v1::Knockout::CHEMICAL);
+  for (int i = 1; i < k.knockout_size(); ++i) {
+    EXPECT_EQ(k.knockout(i).kind(), v1::Knockout::MORPHOGEN);
+    EXPECT_TRUE(k.knockout(i).has_chemical_path());
+    EXPECT_TRUE(k.knockout(i).has_actuator_path());
+    if (k.knockout(i).result().has_fitness()) {
+      EXPECT_EQ(
+          k.knockout(i).fitness_change(),
+          k.knockout(i).result().fitness() - k.intact().result().fitness());
+    }
+  }
+  // The intact evaluation is simulate's.
+  const Outcome simulate = Animat("simulate --genome " + GuidedGenome() +
+                                  " --config " + GuidanceConfig() + " --json");
+  ASSERT_EQ(simulate.exit_code, 0) << simulate.output;
+  EXPECT_NE(simulate.output.find("\"fitness\": " +
+                                 ShortestDouble(k.intact().result().fitness())),
+            std::string::npos)
+      << simulate.output;
+
+  // The table: a header, the intact row, one row per knock-out.
+  const std::vector<std::string> lines = Lines(run.output);
+  ASSERT_EQ(lines.size(), 8u) << run.output;
+  EXPECT_TRUE(StartsWith(lines[0], "silenced  ")) << lines[0];
+  for (const char* column :
+       {"status", "fitness", "change", "distance", "from CHEMICAL",
+        "to actuators", "source distances"}) {
+    EXPECT_NE(lines[0].find(column), std::string::npos) << column;
+  }
+  EXPECT_TRUE(StartsWith(lines[1], "nothing (intact)  ")) << lines[1];
+  EXPECT_NE(lines[1].find("  ok  "), std::string::npos) << lines[1];
+  EXPECT_TRUE(StartsWith(lines[2], "CHEMICAL  ")) << lines[2];
+  for (int i = 1; i < k.knockout_size(); ++i) {
+    // Named as animat grn names the unit, and by node.
+    const std::string name =
+        "M of unit_" + std::to_string(k.knockout(i).unit_element()) +
+        " (node " + std::to_string(k.knockout(i).node()) + ")  ";
+    EXPECT_TRUE(StartsWith(lines[2 + i], name)) << lines[2 + i];
+  }
+
+  // The same bits whatever the threads, in any format.
+  const Outcome one =
+      Animat(source + " --knockouts --threads 1 -o " + Temp("ko.txtpb"));
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  EXPECT_EQ(one.output, run.output);
+  v1::KnockoutAnalysis text;
+  ASSERT_TRUE(ReadProtoFile(Temp("ko.txtpb"), &text).ok());
+  EXPECT_EQ(text.SerializeAsString(), k.SerializeAsString());
+
+  // -o -: the JSON on standard output instead of the table.
+  const Outcome json = Animat(source + " --knockouts -o -");
+  ASSERT_EQ(json.exit_code, 0) << json.output;
+  EXPECT_EQ(json.output.rfind("{", 0), 0u) << json.output;
+  EXPECT_EQ(json.output.find("nothing (intact)"), std::string::npos);
+  EXPECT_NE(json.output.find("\"MORPHOGEN\""), std::string::npos);
+}
+
+TEST(AnalysisCliTest, KnockoutsWithoutGuidanceMeasureTheSwimming) {
+  const Outcome run = Animat("analyze --genome " + GuidedGenome() +
+                             " --config " + ShortConfig() + " --knockouts");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::vector<std::string> lines = Lines(run.output);
+  ASSERT_EQ(lines.size(), 7u) << run.output;  // No CHEMICAL row.
+  EXPECT_EQ(lines[0].find("source distances"), std::string::npos);
+  EXPECT_EQ(run.output.find("\nCHEMICAL "), std::string::npos);
+  EXPECT_TRUE(StartsWith(lines[2], "M of unit_")) << lines[2];
+}
+
+TEST(AnalysisCliTest, KnockoutsRefuseWhatTheyCannotUse) {
+  const std::string source =
+      "analyze --genome " + GuidedGenome() + " --config " + ShortConfig();
+  // The motion analysis's window and spacing are not theirs: usage errors.
+  for (const char* extra : {" --from 10", " --to 100", " --every 2"}) {
+    const Outcome run = Animat(source + " --knockouts" + extra);
+    EXPECT_EQ(run.exit_code, 2) << extra << ": " << run.output;
+    EXPECT_NE(run.output.find("--knockouts"), std::string::npos) << run.output;
+  }
+  const Outcome threads = Animat(source + " --threads 2");
+  EXPECT_EQ(threads.exit_code, 2) << threads.output;
+  for (const char* bad : {" --threads 0", " --threads 257", " --threads x"}) {
+    EXPECT_EQ(Animat(source + " --knockouts" + bad).exit_code, 2) << bad;
+  }
+  const Outcome format =
+      Animat(source + " --knockouts -o " + Temp("knockouts.csv"));
+  EXPECT_EQ(format.exit_code, 1) << format.output;
+  EXPECT_NE(format.output.find(".csv"), std::string::npos) << format.output;
+  const Outcome none = Animat("analyze --knockouts");
+  EXPECT_EQ(none.exit_code, 1);
+  EXPECT_NE(none.output.find("exactly one of --genome"), std::string::npos)
+      << none.output;
+  const Outcome junk = Animat("analyze --knockouts --genome " +
+                              testing::TestData("scenes/triangle.txtpb"));
+  EXPECT_EQ(junk.exit_code, 1) << junk.output;
+  const Outcome unwritable =
+      Animat(source + " --knockouts -o " + Temp("missing/dir/knockouts.json"));
+  EXPECT_EQ(unwritable.exit_code, 1) << unwritable.output;
+}
+
 TEST(AnalysisCliTest, FiguresOfAnAnimatHaveTheirFramesPanelsAndSeries) {
   const std::string source =
       "--genome " + Swimmer() + " --config " + ShortConfig();
@@ -345,6 +487,20 @@ TEST_F(StoreFiguresTest, TheContactSheetShowsTheBestEveryNGenerations) {
   EXPECT_TRUE(pictures[1]->FindAll("circle", "cell").empty());  // None.
   EXPECT_EQ(pictures[2]->FindAll("circle", "cell").size(), 32u);
   EXPECT_EQ(pictures[2]->FindAll("text")[0]->text, "generation 4");
+}
+
+TEST_F(StoreFiguresTest, KnockoutsOfAStoredIndividualUseItsRunsConfiguration) {
+  const Outcome stored =
+      Animat("analyze --db " + Path() + " --individual 4 --knockouts -o " +
+             Temp("stored-knockouts.json"));
+  ASSERT_EQ(stored.exit_code, 0) << stored.output;
+  const Outcome direct =
+      Animat("analyze --genome " + Swimmer() + " --config " + ShortConfig() +
+             " --knockouts -o " + Temp("direct-knockouts.json"));
+  ASSERT_EQ(direct.exit_code, 0) << direct.output;
+  EXPECT_EQ(stored.output, direct.output);
+  EXPECT_EQ(*ReadFile(Temp("stored-knockouts.json")),
+            *ReadFile(Temp("direct-knockouts.json")));
 }
 
 TEST_F(StoreFiguresTest, AnalyzeOfAStoredIndividualUsesItsRunsConfiguration) {

@@ -160,6 +160,9 @@ TEST_F(FlagsTest, AnalysisCommands) {
   const std::vector<std::string> base = {"--genome", genome_, "--config",
                                          config_};
   TryEveryFlag("analyze", base, {"--output"});
+  std::vector<std::string> knockouts = base;
+  knockouts.push_back("--knockouts");
+  TryEveryFlag("analyze", knockouts, {"--output"});
   TryEveryFlag(
       "render",
       {"--genome", genome_, "--config", config_, "-o", Path("page.html")},

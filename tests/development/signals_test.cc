@@ -79,7 +79,7 @@ TEST(MaternalSourcesTest, DistanceFollowsTheParameter) {
   EXPECT_NEAR(sources[1].y, -2.0, 1e-12);
 }
 
-TEST(InputValuesTest, MaternalValuesDecayExponentiallyAndUniformIsOne) {
+TEST(InputValuesTest, MaternalDecayUniformIsOneChemicalIsZero) {
   const SignalParams params;
   const std::array<Vec2, 3> sources = MaternalSources(params);
   const std::vector<Vec2> points = {
@@ -93,6 +93,8 @@ TEST(InputValuesTest, MaternalValuesDecayExponentiallyAndUniformIsOne) {
           << "k=" << k << " at (" << p.x << ", " << p.y << ")";
     }
     EXPECT_EQ(v[static_cast<int>(InputChannel::kUniform)], 1.0);
+    // No chemical source outside guidance's motion (model §10.2).
+    EXPECT_EQ(v[static_cast<int>(InputChannel::kChemical)], 0.0);
   }
 }
 
