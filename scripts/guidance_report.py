@@ -1,0 +1,201 @@
+#!/usr/bin/env python3
+"""Reads the guidance runs' stores (configs/guidance.txtpb evolved by
+`scripts/seeded_runs.sh --config configs/guidance.txtpb --name guidance`)
+and writes what docs/results.md reports under "Active guidance": per run
+the best's score, the final distance to each trial's source, whether it
+ends closer to all of them, its knock-outs (the chemical and each
+morphogen silenced during motion, `animat analyze --knockouts`), and per
+generation the share of the population that ends closer to every source.
+
+  scripts/guidance_report.py [--out out/guidance] [--dest docs/results]
+      [--animat build/bin/animat]
+
+Only Python's standard library; the simulator work is done by `animat`
+(lineage, simulate, analyze, figure, render). Writes DEST/guidance.json
+(every number), DEST/guidance.md (the tables), for each run
+DEST/guidance-seedS-trials.svg (the best's K paths around their sources),
+DEST/guidance-seedS-fitness.svg (best, mean and median score per
+generation) and DEST/guidance-seedS.html (the best's replay page, trial
+0), and the bests' genomes and models in DEST/bests/. A run still going
+is reported as far as it has gone.
+"""
+
+import argparse
+import json
+import os
+import re
+import sqlite3
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import replication_report as rr  # noqa: E402  (its store and analysis code)
+
+RUN_NAME = re.compile(r"^guidance-seed([0-9]+)\.db$")
+
+
+def guidance_of(model_text):
+    """K and D of the run's model (docs/model.md §10.2 defaults if absent)."""
+    trials = re.search(r"\btrials: ([0-9]+)", model_text)
+    distance = re.search(r"\bsource_distance: ([0-9.e+]+)", model_text)
+    return (int(trials.group(1)) if trials else 4,
+            float(distance.group(1)) if distance else 30.0)
+
+
+def closer_by_generation(path, run_id, source_distance):
+    """Per completed generation: members ok, and of them those that end
+    closer than they started to every trial's source (from `trials`)."""
+    db = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
+    rows = db.execute(
+        "SELECT m.generation, COUNT(*),"
+        " SUM(t.farthest < ?) FROM members m"
+        " JOIN generations g ON g.run_id = m.run_id"
+        "  AND g.generation = m.generation AND g.completed_at IS NOT NULL"
+        " JOIN (SELECT run_id, id, MAX(source_distance) AS farthest"
+        "       FROM trials GROUP BY run_id, id) t"
+        "  ON t.run_id = m.run_id AND t.id = m.id"
+        " WHERE m.run_id = ? GROUP BY m.generation ORDER BY m.generation",
+        (source_distance, run_id)).fetchall()
+    db.close()
+    return [{"generation": g, "ok": n, "closer_to_all": c}
+            for g, n, c in rows]
+
+
+def simulate(animat, genome, config):
+    return json.loads(rr.run([animat, "simulate", "--genome", genome,
+                              "--config", config, "--json"]))
+
+
+def knockouts(animat, db, individual):
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "knockouts.json")
+        rr.run([animat, "analyze", "--db", db, "--individual",
+                str(individual), "--knockouts", "-o", path])
+        with open(path) as f:
+            return json.load(f)
+
+
+def knockout_rows(name, k, source_distance):
+    """The table rows of one best's knock-outs."""
+    rows = []
+    for entry in [k["intact"]] + k.get("knockout", []):
+        kind = entry.get("kind", "NONE")
+        if kind == "NONE":
+            what = "nothing (intact)"
+        elif kind == "CHEMICAL":
+            what = "CHEMICAL"
+        else:
+            what = (f"M of unit_{entry.get('unit_element', 0)} "
+                    f"(node {entry.get('node', 0)})")
+        r = entry["result"]
+        ds = r.get("source_distances", [])
+        closer = sum(1 for d in ds if d < source_distance)
+        change = entry.get("fitness_change")
+        paths = "".join([
+            "from CHEMICAL " if entry.get("chemical_path") else "",
+            "to actuators" if entry.get("actuator_path") else ""]).strip()
+        rows.append(
+            f"| {name} | {what} | {r.get('status', '').lower()} | "
+            + (f"{r['fitness']:.4g}" if "fitness" in r else "—") + " | "
+            + (f"{change:+.4g}" if change is not None else "—") + " | "
+            + (f"{r['distance']:.2f}" if "distance" in r else "—") + " | "
+            + f"{closer}/{len(ds)} | "
+            + " ".join(f"{d:.2f}" for d in ds) + f" | {paths or '—'} |")
+    return rows
+
+
+def report_run(animat, path, name, seed, dest):
+    s = rr.store_summary(path)
+    trials, source_distance = guidance_of(s["model_text"])
+    best = s["best"]
+    stem = rr.write_best(animat, path, name, best["id"], s["model_text"],
+                         dest)
+    config = stem + ".config.txtpb"
+    again = simulate(animat, stem + ".json", config)
+    if float.hex(again["fitness"]) != float.hex(best["fitness"]):
+        sys.exit(f"{stem}: simulated again, fitness {again['fitness']} "
+                 f"is not the stored {best['fitness']}")
+    figure = os.path.join(dest, f"{name}-trials.svg")
+    rr.run([animat, "figure", "guidance", "--genome", stem + ".json",
+            "--config", config, "--every", "10", "-o", figure])
+    rr.run([animat, "figure", "fitness", "--db", path, "-o",
+            os.path.join(dest, f"{name}-fitness.svg")])
+    rr.run([animat, "render", "--genome", stem + ".json", "--config", config,
+            "--every", "20", "-o", os.path.join(dest, f"{name}.html")])
+    distances = again["source_distances"]
+    return {
+        "name": name, "seed": seed, "trials": trials,
+        "source_distance": source_distance,
+        "generations": s["generations"], "initial_tried": s["initial_tried"],
+        "best_id": best["id"], "best_generation": best["generation"],
+        "fitness": best["fitness"], "distance": again["distance"],
+        "energy": again["energy"], "source_distances": distances,
+        "closer": sum(1 for d in distances if d < source_distance),
+        "genome": stem + ".json",
+        "curve": [x["best_fitness"] for x in s["stats"]],
+        "closer_by_generation": closer_by_generation(
+            path, s["run_id"], source_distance),
+        "knockouts": knockouts(animat, path, best["id"]),
+    }
+
+
+def tables(runs):
+    lines = [
+        "| run | generations | random genomes tried | best (generation) | "
+        "score | distance swum | ends closer to | final distances to the "
+        "sources (start: D) |",
+        "|---|---:|---:|---|---:|---:|---:|---|"]
+    for r in runs:
+        lines.append(
+            f"| {r['name']} | {r['generations']} | {r['initial_tried']:,} | "
+            f"{r['best_id']} (g{r['best_generation']}) | {r['fitness']:.4g} |"
+            f" {r['distance']:.2f} | {r['closer']}/{r['trials']} | "
+            + " ".join(f"{d:.2f}" for d in r["source_distances"]) + " |")
+    lines += ["", "| run | generation | members ok | closer to every "
+              "source |", "|---|---:|---:|---:|"]
+    for r in runs:
+        per = r["closer_by_generation"]
+        step = max(1, len(per) // 5)
+        for p in per[::step] + ([per[-1]] if (len(per) - 1) % step else []):
+            lines.append(f"| {r['name']} | {p['generation']} | {p['ok']} | "
+                         f"{p['closer_to_all']} |")
+    lines += ["", "| run | silenced | status | score | change | distance "
+              "swum | ends closer to | final distances | paths |",
+              "|---|---|---|---:|---:|---:|---:|---|---|"]
+    for r in runs:
+        lines += knockout_rows(r["name"], r["knockouts"],
+                               r["source_distance"])
+    return lines
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--out", default="out/guidance")
+    parser.add_argument("--dest", default="docs/results")
+    # This build's animat, not the runs' copy: knock-outs may be newer
+    # than the runs, and each best is checked to give its stored fitness
+    # to the bit.
+    parser.add_argument("--animat", default="build/bin/animat")
+    args = parser.parse_args()
+    animat = args.animat
+    os.makedirs(os.path.join(args.dest, "bests"), exist_ok=True)
+
+    runs = []
+    for name in sorted(os.listdir(args.out)):
+        m = RUN_NAME.match(name)
+        if m:
+            runs.append(report_run(animat, os.path.join(args.out, name),
+                                   name[:-3], int(m.group(1)), args.dest))
+    if not runs:
+        sys.exit(f"no stores guidance-seedS.db in {args.out}")
+    with open(os.path.join(args.dest, "guidance.md"), "w") as f:
+        f.write("\n".join(tables(runs)) + "\n")
+    with open(os.path.join(args.dest, "guidance.json"), "w") as f:
+        json.dump({"runs": runs}, f, indent=2)
+        f.write("\n")
+    print(f"wrote {args.dest}/guidance.md, guidance.json and each run's "
+          "figures and replay page")
+
+
+if __name__ == "__main__":
+    main()
