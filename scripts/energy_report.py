@@ -12,13 +12,15 @@ bests over time.
 
 Only Python's standard library; the simulator work is done by `animat`
 (lineage, simulate, analyze). Writes DEST/energy.json (every number),
-DEST/energy.md (the tables) and DEST/energy-dn1.svg (the bests' distance over
-the generations), and the energy-aware bests' genomes and models in
-DEST/bests/. A run still going is reported as far as it has gone.
+DEST/energy.md (the tables), DEST/energy-dn1.svg (the bests' distance over
+the generations), each energy-aware best's strip and activity figures
+(DEST/energy-dn1-seedS-strip.svg, -activity.svg), and the energy-aware
+bests' genomes and models in DEST/bests/. A run still going is reported as far as it has gone.
 """
 
 import argparse
 import json
+import math
 import os
 import re
 import sqlite3
@@ -91,6 +93,17 @@ def row(r):
             f"{feature('coasting')} |")
 
 
+def nice_ticks(top):
+    """0 and multiples of 1, 2 or 5 times a power of ten up to `top`,
+    about five of them."""
+    step = 10 ** math.floor(math.log10(max(top, 1e-9) / 5))
+    for factor in (1, 2, 5, 10):
+        if top / (step * factor) <= 6:
+            step *= factor
+            break
+    return [step * i for i in range(int(top / step) + 1)]
+
+
 def svg(runs, path):
     """Best distance per generation, one line per run."""
     w, h, left, bottom, top, right = 640, 360, 56, 40, 16, 150
@@ -110,13 +123,12 @@ def svg(runs, path):
            f'<text x="14" y="{(top + h - bottom) / 2}" text-anchor="middle" '
            f'transform="rotate(-90 14 {(top + h - bottom) / 2})">'
            'distance swum by the best (radii)</text>']
-    for t in range(0, 6):
-        d = dmax * t / 5
+    for d in nice_ticks(dmax):
         out.append(f'<text x="{left - 4}" y="{y(d) + 4:.1f}" '
-                   f'text-anchor="end">{d:.0f}</text>')
-    for t in range(0, gmax + 1, max(1, gmax // 5)):
+                   f'text-anchor="end">{d:g}</text>')
+    for t in nice_ticks(gmax):
         out.append(f'<text x="{x(t):.1f}" y="{h - bottom + 14}" '
-                   f'text-anchor="middle">{t}</text>')
+                   f'text-anchor="middle">{t:g}</text>')
     for i, r in enumerate(runs):
         colour = "#c0392b" if r["fitness_kind"] == "energy" else "#2c3e50"
         dash = ["", "6 3", "2 2", "8 2 2 2"][i % 4]
@@ -156,6 +168,10 @@ def main():
         stem = rr.write_best(animat, path, name[:-3], best["id"],
                              s["model_text"], args.dest)
         again = simulate(animat, stem + ".json", stem + ".config.txtpb")
+        for kind in ("strip", "activity"):
+            rr.run([animat, "figure", kind, "--genome", stem + ".json",
+                    "--config", stem + ".config.txtpb", "-o",
+                    os.path.join(args.dest, f"{name[:-3]}-{kind}.svg")])
         if float.hex(again["fitness"]) != float.hex(best["fitness"]):
             sys.exit(f"{stem}: simulated again, fitness {again['fitness']} "
                      f"is not the stored {best['fitness']}")
