@@ -2,8 +2,10 @@
 // their sources, and the guidance fitness.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -252,6 +254,82 @@ TEST(GuidanceTest, ThreadCountDoesNotChangeTheBits) {
     EXPECT_EQ(many.state_hash, one.state_hash);
     EXPECT_EQ(many.steps, one.steps);
   }
+}
+
+// The largest |x| or |y| of any node: before motion, and in each trial.
+class Extent : public EvaluationObserver {
+ public:
+  void OnGuidanceTrial(int trial, std::span<const Vec2>) override {
+    current = trial;
+  }
+  void OnMotionStep(MotionPhase phase, int, const MotionState& state,
+                    std::span<const double>, std::span<const double>) override {
+    double& m = phase == MotionPhase::kMotion ? trial[current] : before;
+    for (const Vec2& p : state.position) {
+      m = std::max({m, std::fabs(p.x), std::fabs(p.y)});
+    }
+  }
+  int current = -1;
+  double before = 0.0;
+  std::map<int, double> trial;
+};
+
+// Some trials cross the evaluation's bound (evaluation.max_coordinate,
+// checked at every step here) and the others do not: the evaluation is a
+// numerical failure named after the first of them in trial order, with its
+// body and no fitness or source distances, the same on one thread as on
+// several.
+TEST(GuidanceTest, FailingTrialsFailTheEvaluationNamingTheFirst) {
+  const Genome genome = SensingSwimmer();
+  ModelConfig config = GuidanceConfig(4);
+  config.evaluation.check_interval = 1;
+  Extent extent;
+  EvaluateOptions every_trial;
+  every_trial.observed_trial = EvaluateOptions::kAllTrials;
+  const EvaluationResult intact =
+      Evaluate(genome, config, &extent, every_trial);
+  ASSERT_EQ(intact.status, EvalStatus::kOk) << intact.reason;
+  ASSERT_EQ(extent.trial.size(), 4u);
+  // A bound between the farthest reach and the next one below it (mirror
+  // trials reach equally far): the first trial in trial order that crosses
+  // it decides, whichever thread finishes first.
+  double farthest_reach = 0.0;
+  for (const auto& [k, m] : extent.trial) {
+    farthest_reach = std::max(farthest_reach, m);
+  }
+  double below = extent.before;
+  for (const auto& [k, m] : extent.trial) {
+    if (m < farthest_reach) below = std::max(below, m);
+  }
+  ASSERT_LT(below, farthest_reach) << "no trial reaches beyond the others";
+  config.evaluation.max_coordinate = (below + farthest_reach) / 2;
+  int farthest = 0;
+  while (extent.trial[farthest] < farthest_reach) ++farthest;
+
+  const int motion_steps = config.evaluation.motion_steps;
+  for (int threads : {1, 4}) {
+    SCOPED_TRACE(threads);
+    EvaluateOptions options;
+    options.threads = threads;
+    const EvaluationResult r = Evaluate(genome, config, nullptr, options);
+    EXPECT_EQ(r.status, EvalStatus::kNumericalFailure);
+    EXPECT_EQ(
+        r.reason.rfind("trial " + std::to_string(farthest) + ": node ", 0), 0u)
+        << r.reason;
+    EXPECT_NE(r.reason.find("left the region"), std::string::npos) << r.reason;
+    EXPECT_FALSE(r.fitness.has_value());
+    EXPECT_TRUE(r.source_distances.empty());
+    EXPECT_TRUE(r.body.has_value());
+    // The steps: those before motion, the trials before it in full, and
+    // its own up to the failure.
+    const int64_t before_motion = intact.steps - 4 * motion_steps;
+    EXPECT_GT(r.steps, before_motion + farthest * motion_steps);
+    EXPECT_LE(r.steps, before_motion + (farthest + 1) * motion_steps);
+  }
+  EvaluateOptions one, four;
+  four.threads = 4;
+  EXPECT_EQ(Evaluate(genome, config, nullptr, one).steps,
+            Evaluate(genome, config, nullptr, four).steps);
 }
 
 TEST(GuidanceTest, ResultProtoCarriesTheSourceDistances) {
