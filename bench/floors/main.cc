@@ -54,7 +54,8 @@ double BestMs(Fn fn, int calls, int runs = 7) {
 }
 
 // The work of one network update: weights applied per cell (those from
-// non-input sources; inputs are frozen in motion) and levels updated.
+// sources other than the inputs frozen in motion: every input but
+// CHEMICAL, which is read at every step) and levels updated.
 struct NetworkWork {
   long weights = 0;
   long targets = 0;
@@ -65,7 +66,8 @@ NetworkWork CountNetwork(const Network& net, const std::vector<bool>& needed,
   NetworkWork w;
   for (int t : net.targets()) w.targets += needed[t] ? 1 : 0;
   for (size_t s = 0; s < net.sources().size(); ++s) {
-    if (frozen_inputs && static_cast<int>(s) < net.input_source_count()) {
+    if (frozen_inputs &&
+        static_cast<int>(s) < net.static_input_source_count()) {
       continue;
     }
     if (!needed[net.sources()[s].node]) continue;
