@@ -55,7 +55,7 @@ Genome DeafSwimmer() {
 // where the chemical is 0.
 Genome SensingSwimmer() {
   Genome genome = LoadGenome("seed-1203.json");
-  const Element& expand = genome.elements[7];
+  const Element expand = genome.elements[7];  // A copy: elements grows.
   EXPECT_EQ(expand.type, ElementType::kSOut);
   EXPECT_EQ(expand.channel, static_cast<int>(OutputChannel::kExpand));
   const double x = expand.x, y = expand.y;
