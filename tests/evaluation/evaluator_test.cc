@@ -12,19 +12,13 @@
 #include "common/genome/genome_proto.h"
 #include "common/genome/random_genome.h"
 #include "common/io/proto_file.h"
+#include "tests/test_genome.h"
 #include "tests/test_util.h"
 
 namespace animat {
 namespace {
 
-Genome LoadGenome(const std::string& name) {
-  v1::Genome message;
-  Status status = ReadProtoFile(testing::TestData("genomes/" + name), &message);
-  EXPECT_TRUE(status.ok()) << status.ToString();
-  Result<Genome> genome = GenomeFromProto(message);
-  EXPECT_TRUE(genome.ok()) << genome.status().ToString();
-  return genome.ok() ? *genome : Genome{};
-}
+using testing::LoadGenome;
 
 // A short schedule: the statuses do not depend on the motion's length.
 ModelConfig ShortConfig() {

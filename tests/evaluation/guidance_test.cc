@@ -15,6 +15,7 @@
 #include "common/genome/genome_proto.h"
 #include "common/io/proto_file.h"
 #include "tests/genome_builder.h"
+#include "tests/test_genome.h"
 #include "tests/test_util.h"
 
 namespace animat {
@@ -28,14 +29,7 @@ constexpr double kPi = 3.14159265358979323846;
 // Long enough for the swimmer to get going.
 constexpr int kMotionSteps = 2000;
 
-Genome LoadGenome(const std::string& name) {
-  v1::Genome message;
-  Status status = ReadProtoFile(testing::TestData("genomes/" + name), &message);
-  EXPECT_TRUE(status.ok()) << status.ToString();
-  Result<Genome> genome = GenomeFromProto(message);
-  EXPECT_TRUE(genome.ok()) << genome.status().ToString();
-  return genome.ok() ? *genome : Genome{};
-}
+using testing::LoadGenome;
 
 // The swimmers below grow from seed-1203, the best random mover: a chain
 // of 32 cells (every cell on the skin), so the configurations accept

@@ -13,6 +13,7 @@
 #include "common/grn/network.h"
 #include "common/io/proto_file.h"
 #include "tests/genome_builder.h"
+#include "tests/test_genome.h"
 #include "tests/test_util.h"
 
 namespace animat {
@@ -23,14 +24,7 @@ using testing::GMor;
 using testing::In;
 using testing::P;
 
-Genome LoadGenome(const std::string& name) {
-  v1::Genome message;
-  Status status = ReadProtoFile(testing::TestData("genomes/" + name), &message);
-  EXPECT_TRUE(status.ok()) << status.ToString();
-  Result<Genome> genome = GenomeFromProto(message);
-  EXPECT_TRUE(genome.ok()) << genome.status().ToString();
-  return genome.ok() ? *genome : Genome{};
-}
+using testing::LoadGenome;
 
 // seed-1203, the best random mover: a chain of 32 cells with three
 // morphogens of its own. Its EXPAND output is element 7.

@@ -22,6 +22,7 @@
 #include "common/io/proto_file.h"
 #include "common/physics/physics_params.h"
 #include "common/physics/soft_body.h"
+#include "tests/test_genome.h"
 #include "tests/test_util.h"
 
 namespace animat {
@@ -363,14 +364,7 @@ TEST(BulletStepperTest, ManySteppersComeAndGoWithoutLeaks) {
 // ---------------------------------------------------------------------------
 // A whole evaluation.
 
-Genome LoadGenome(const std::string& name) {
-  v1::Genome message;
-  Status status = ReadProtoFile(testing::TestData("genomes/" + name), &message);
-  EXPECT_TRUE(status.ok()) << status.ToString();
-  Result<Genome> genome = GenomeFromProto(message);
-  EXPECT_TRUE(genome.ok()) << genome.status().ToString();
-  return genome.ok() ? *genome : Genome{};
-}
+using testing::LoadGenome;
 
 TEST(BulletStepperTest, EvaluationWithBulletMatchesNative) {
   const Genome genome = LoadGenome("seed-1198.json");
