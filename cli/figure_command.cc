@@ -209,6 +209,16 @@ Result<StoreRun> OpenRun(const std::string& db, std::optional<int64_t> run) {
   return s;
 }
 
+// What a run's fitness measures (docs/model.md §7.4, §10), for an axis.
+std::string FitnessUnits(const v1::Config& model) {
+  if (model.guidance().enabled()) return "radii closer to the source, mean";
+  if (model.evaluation().fitness() ==
+      v1::EvaluationConfig::DISTANCE_WITHIN_ENERGY_BUDGET) {
+    return "radii swum, within the energy budget";
+  }
+  return "radii swum";
+}
+
 int Fitness(const Options& o) {
   if (o.dbs.empty()) return Fail("figure fitness needs --db FILE");
   std::vector<figures::FitnessCurves> runs;
@@ -221,6 +231,7 @@ int Fitness(const Options& o) {
     if (rows->empty()) return Fail(db + ": no completed generation yet");
     figures::FitnessCurves curves;
     curves.label = "seed " + std::to_string(s->row.seed);
+    curves.units = FitnessUnits(s->row.config.model());
     for (const lineage::CompletedGeneration& g : *rows) {
       curves.generation.push_back(g.generation);
       curves.best.push_back(g.stats.best);

@@ -175,11 +175,17 @@ LinePlot FitnessPlot(const std::vector<FitnessCurves>& runs) {
   LinePlot plot;
   plot.title = "Fitness over generations";
   plot.x_label = "generation";
-  Panel panel{"best (solid), mean (dashed) and median (dotted)",
-              "fitness (radii swum)",
-              {},
-              {},
-              {}};
+  std::string axis = "fitness";
+  if (!runs.empty() &&
+      std::all_of(runs.begin(), runs.end(),
+                  [&](const FitnessCurves& run) {
+                    return run.units == runs.front().units;
+                  }) &&
+      !runs.front().units.empty()) {
+    axis += " (" + runs.front().units + ")";
+  }
+  Panel panel{
+      "best (solid), mean (dashed) and median (dotted)", axis, {}, {}, {}};
   for (size_t r = 0; r < runs.size(); ++r) {
     const FitnessCurves& run = runs[r];
     const std::string colour = kRunColours[r % std::size(kRunColours)];

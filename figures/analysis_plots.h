@@ -47,12 +47,15 @@ std::vector<int> DefaultCells(const analysis::Analysis& analysis, int count);
 // Best, mean and median fitness per generation of one run.
 struct FitnessCurves {
   std::string label;  // E.g. "seed 1".
+  // What the run's fitness measures, for the axis: e.g. "radii swum".
+  std::string units;
   std::vector<int> generation;
   std::vector<std::optional<double>> best, mean, median;
 };
 
 // One panel: for each run (its own colour) best (solid), mean (dashed) and
-// median (dotted) fitness against generation.
+// median (dotted) fitness against generation. The axis reads "fitness
+// (units)" when every run has the same units, "fitness" otherwise.
 LinePlot FitnessPlot(const std::vector<FitnessCurves>& runs);
 
 }  // namespace animat::figures

@@ -14,10 +14,13 @@ Only Python's standard library; the simulator work is done by `animat`
 (lineage, simulate, analyze, figure, render). Writes DEST/guidance.json
 (every number), DEST/guidance.md (the tables), for each run
 DEST/guidance-seedS-trials.svg (the best's K paths around their sources),
-DEST/guidance-seedS-fitness.svg (best, mean and median score per
-generation) and DEST/guidance-seedS.html (the best's replay page, trial
-0), and the bests' genomes and models in DEST/bests/. A run still going
-is reported as far as it has gone.
+DEST/guidance-seedS-untrained.svg (its paths with 2K sources, all in
+directions between the K it evolved with),
+DEST/guidance-seedS.html (the best's replay page, trial 0),
+DEST/guidance-fitness.svg (every run's best, mean and median score per
+generation) and the bests' genomes and models in DEST/bests/. A trial
+"ends closer" to its source when it ends at least CLOSER radii closer.
+A run still going is reported as far as it has gone.
 """
 
 import argparse
@@ -33,6 +36,10 @@ import replication_report as rr  # noqa: E402  (its store and analysis code)
 
 RUN_NAME = re.compile(r"^guidance-seed([0-9]+)\.db$")
 
+# A trial counts as ending closer to its source when it ends at least this
+# much closer (radii): a body that does not swim drifts by about 1e-8.
+CLOSER = 0.01
+
 
 def guidance_of(model_text):
     """K and D of the run's model (docs/model.md §10.2 defaults if absent)."""
@@ -44,7 +51,8 @@ def guidance_of(model_text):
 
 def closer_by_generation(path, run_id, source_distance):
     """Per completed generation: members ok, and of them those that end
-    closer than they started to every trial's source (from `trials`)."""
+    closer than they started to every trial's source by CLOSER (from
+    `trials`)."""
     db = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
     rows = db.execute(
         "SELECT m.generation, COUNT(*),"
@@ -55,7 +63,7 @@ def closer_by_generation(path, run_id, source_distance):
         "       FROM trials GROUP BY run_id, id) t"
         "  ON t.run_id = m.run_id AND t.id = m.id"
         " WHERE m.run_id = ? GROUP BY m.generation ORDER BY m.generation",
-        (source_distance, run_id)).fetchall()
+        (source_distance - CLOSER, run_id)).fetchall()
     db.close()
     return [{"generation": g, "ok": n, "closer_to_all": c}
             for g, n, c in rows]
@@ -64,6 +72,28 @@ def closer_by_generation(path, run_id, source_distance):
 def simulate(animat, genome, config):
     return json.loads(rr.run([animat, "simulate", "--genome", genome,
                               "--config", config, "--json"]))
+
+
+def untrained(animat, stem, model_text, dest, name):
+    """The best with sources in UNTRAINED directions: 2K trials, whose
+    angles 2 pi (k + 1/2) / 2K all lie between the K trained ones. Returns
+    the simulation and draws its paths (DEST/NAME-untrained.svg)."""
+    trials, _ = guidance_of(model_text)
+    text = re.sub(r"\btrials: [0-9]+", f"trials: {2 * trials}", model_text)
+    if text == model_text:
+        text = model_text.replace("guidance {",
+                                  f"guidance {{\n  trials: {2 * trials}")
+    config = stem + ".untrained.config.txtpb"
+    with open(config, "w") as f:
+        f.write("# proto-file: proto/animat/v1/config.proto\n"
+                "# proto-message: animat.v1.Config\n"
+                f"# The model of run {name} with {2 * trials} trials, "
+                "in directions the run never saw (docs/results.md).\n")
+        f.write(text)
+    rr.run([animat, "figure", "guidance", "--genome", stem + ".json",
+            "--config", config, "--every", "10", "-o",
+            os.path.join(dest, f"{name}-untrained.svg")])
+    return simulate(animat, stem + ".json", config)
 
 
 def knockouts(animat, db, individual):
@@ -89,7 +119,7 @@ def knockout_rows(name, k, source_distance):
                     f"(node {entry.get('node', 0)})")
         r = entry["result"]
         ds = r.get("source_distances", [])
-        closer = sum(1 for d in ds if d < source_distance)
+        closer = sum(1 for d in ds if d < source_distance - CLOSER)
         change = entry.get("fitness_change")
         paths = "".join([
             "from CHEMICAL " if entry.get("chemical_path") else "",
@@ -118,11 +148,10 @@ def report_run(animat, path, name, seed, dest):
     figure = os.path.join(dest, f"{name}-trials.svg")
     rr.run([animat, "figure", "guidance", "--genome", stem + ".json",
             "--config", config, "--every", "10", "-o", figure])
-    rr.run([animat, "figure", "fitness", "--db", path, "-o",
-            os.path.join(dest, f"{name}-fitness.svg")])
     rr.run([animat, "render", "--genome", stem + ".json", "--config", config,
             "--every", "20", "-o", os.path.join(dest, f"{name}.html")])
     distances = again["source_distances"]
+    other = untrained(animat, stem, s["model_text"], dest, name)
     return {
         "name": name, "seed": seed, "trials": trials,
         "source_distance": source_distance,
@@ -130,8 +159,15 @@ def report_run(animat, path, name, seed, dest):
         "best_id": best["id"], "best_generation": best["generation"],
         "fitness": best["fitness"], "distance": again["distance"],
         "energy": again["energy"], "source_distances": distances,
-        "closer": sum(1 for d in distances if d < source_distance),
+        "closer": sum(1 for d in distances
+                      if d < source_distance - CLOSER),
         "genome": stem + ".json",
+        "untrained": {
+            "status": other["status"],
+            "fitness": other.get("fitness"),
+            "source_distances": other.get("source_distances", []),
+            "closer": sum(1 for d in other.get("source_distances", [])
+                          if d < source_distance - CLOSER)},
         "curve": [x["best_fitness"] for x in s["stats"]],
         "closer_by_generation": closer_by_generation(
             path, s["run_id"], source_distance),
@@ -151,6 +187,16 @@ def tables(runs):
             f"{r['best_id']} (g{r['best_generation']}) | {r['fitness']:.4g} |"
             f" {r['distance']:.2f} | {r['closer']}/{r['trials']} | "
             + " ".join(f"{d:.2f}" for d in r["source_distances"]) + " |")
+    lines += ["", "| run | untrained directions | status | score | ends "
+              "closer to | final distances |", "|---|---:|---|---:|---:|---|"]
+    for r in runs:
+        u = r["untrained"]
+        ds = u["source_distances"]
+        lines.append(
+            f"| {r['name']} | {len(ds)} | {u['status'].lower()} | "
+            + (f"{u['fitness']:.4g}" if u["fitness"] is not None else "—")
+            + f" | {u['closer']}/{len(ds)} | "
+            + " ".join(f"{d:.2f}" for d in ds) + " |")
     lines += ["", "| run | generation | members ok | closer to every "
               "source |", "|---|---:|---:|---:|"]
     for r in runs:
@@ -188,6 +234,11 @@ def main():
                                    name[:-3], int(m.group(1)), args.dest))
     if not runs:
         sys.exit(f"no stores guidance-seedS.db in {args.out}")
+    dbs = []
+    for r in runs:
+        dbs += ["--db", os.path.join(args.out, r["name"] + ".db")]
+    rr.run([animat, "figure", "fitness", *dbs, "-o",
+            os.path.join(args.dest, "guidance-fitness.svg")])
     with open(os.path.join(args.dest, "guidance.md"), "w") as f:
         f.write("\n".join(tables(runs)) + "\n")
     with open(os.path.join(args.dest, "guidance.json"), "w") as f:

@@ -132,10 +132,10 @@ TEST(AnalysisPlotsTest, DefaultCellsAreTheDriversFirst) {
 }
 
 TEST(AnalysisPlotsTest, FitnessHasBestMeanAndMedianPerRun) {
-  FitnessCurves a{
-      "seed 1", {0, 1, 2}, {0.5, 0.7, 0.9}, {0.1, 0.2, 0.3}, {0.05, 0.1, 0.2}};
-  FitnessCurves b{
-      "seed 2", {0, 1}, {0.4, 0.8}, {0.2, 0.3}, {std::nullopt, 0.25}};
+  FitnessCurves a{"seed 1",        "radii swum",    {0, 1, 2},
+                  {0.5, 0.7, 0.9}, {0.1, 0.2, 0.3}, {0.05, 0.1, 0.2}};
+  FitnessCurves b{"seed 2",   "radii swum", {0, 1},
+                  {0.4, 0.8}, {0.2, 0.3},   {std::nullopt, 0.25}};
   const testing::XmlElement root = Parse(LinePlotSvg(FitnessPlot({a, b})));
   ASSERT_EQ(root.FindAll("g", "panel").size(), 1u);
   const auto series = root.FindAll("polyline", "series");
@@ -146,6 +146,18 @@ TEST(AnalysisPlotsTest, FitnessHasBestMeanAndMedianPerRun) {
   EXPECT_EQ(Points(*series[5]), 1u);  // The missing median is left out.
   EXPECT_NE(series[0]->Attribute("stroke"), series[3]->Attribute("stroke"));
   EXPECT_EQ(series[1]->Attribute("stroke-dasharray"), "6,3");
+  EXPECT_EQ(FitnessPlot({a, b}).panels[0].y_label, "fitness (radii swum)");
+}
+
+TEST(AnalysisPlotsTest, FitnessAxisNamesUnitsOnlyWhenRunsShareThem) {
+  FitnessCurves a{"seed 1", "radii swum", {0}, {0.5}, {0.1}, {0.05}};
+  FitnessCurves b{
+      "seed 2", "radii closer to the source, mean", {0}, {0.4}, {0.2}, {0.1}};
+  EXPECT_EQ(FitnessPlot({b}).panels[0].y_label,
+            "fitness (radii closer to the source, mean)");
+  EXPECT_EQ(FitnessPlot({a, b}).panels[0].y_label, "fitness");
+  a.units.clear();
+  EXPECT_EQ(FitnessPlot({a}).panels[0].y_label, "fitness");
 }
 
 }  // namespace

@@ -573,6 +573,17 @@ TEST_F(EvolveCliTest, GuidanceRunRecordsEveryTrial) {
     value.erase(0, value.find_first_not_of(' '));
     EXPECT_EQ(RealCell(value), trials[k][0]) << out;
   }
+
+  // The fitness figure names what a guidance run's fitness measures.
+  const std::string svg = Path("fitness.svg");
+  ASSERT_EQ(Animat({"figure", "fitness", "--db", db_, "-o", svg}, &out, &err),
+            0)
+      << err;
+  Result<std::string> text = ReadFile(svg);
+  ASSERT_TRUE(text.ok()) << text.status().ToString();
+  EXPECT_NE(text->find("fitness (radii closer to the source, mean)"),
+            std::string::npos);
+  EXPECT_EQ(text->find("radii swum"), std::string::npos);
 }
 
 // A store written by schema version 2 or 3 (the same run, its rows copied
