@@ -16,6 +16,7 @@ Only Python's standard library; the simulator work is done by `animat`
 DEST/guidance-seedS-trials.svg (the best's K paths around their sources),
 DEST/guidance-seedS-untrained.svg (its paths with 2K sources, all in
 directions between the K it evolved with),
+its score with the sources at other distances (FARTHER),
 DEST/guidance-seedS.html (the best's replay page, trial 0),
 DEST/guidance-fitness.svg (every run's best, mean and median score per
 generation) and the bests' genomes and models in DEST/bests/. A trial
@@ -39,6 +40,9 @@ RUN_NAME = re.compile(r"^guidance-seed([0-9]+)\.db$")
 # A trial counts as ending closer to its source when it ends at least this
 # much closer (radii): a body that does not swim drifts by about 1e-8.
 CLOSER = 0.01
+
+# Source distances (radii) the bests are tried at besides the run's own.
+FARTHER = (15.0, 45.0, 60.0)
 
 
 def guidance_of(model_text):
@@ -74,26 +78,51 @@ def simulate(animat, genome, config):
                               "--config", config, "--json"]))
 
 
+def with_guidance(model_text, field, value):
+    """MODEL_TEXT with guidance's FIELD set to VALUE."""
+    text = re.sub(rf"\b{field}: [0-9.e+]+", f"{field}: {value}", model_text)
+    if text == model_text:
+        text = model_text.replace("guidance {",
+                                  f"guidance {{\n  {field}: {value}")
+    return text
+
+
 def untrained(animat, stem, model_text, dest, name):
     """The best with sources in UNTRAINED directions: 2K trials, whose
     angles 2 pi (k + 1/2) / 2K all lie between the K trained ones. Returns
     the simulation and draws its paths (DEST/NAME-untrained.svg)."""
     trials, _ = guidance_of(model_text)
-    text = re.sub(r"\btrials: [0-9]+", f"trials: {2 * trials}", model_text)
-    if text == model_text:
-        text = model_text.replace("guidance {",
-                                  f"guidance {{\n  trials: {2 * trials}")
     config = stem + ".untrained.config.txtpb"
     with open(config, "w") as f:
         f.write("# proto-file: proto/animat/v1/config.proto\n"
                 "# proto-message: animat.v1.Config\n"
                 f"# The model of run {name} with {2 * trials} trials, "
                 "in directions the run never saw (docs/results.md).\n")
-        f.write(text)
+        f.write(with_guidance(model_text, "trials", 2 * trials))
     rr.run([animat, "figure", "guidance", "--genome", stem + ".json",
             "--config", config, "--every", "10", "-o",
             os.path.join(dest, f"{name}-untrained.svg")])
     return simulate(animat, stem + ".json", config)
+
+
+def other_distances(animat, stem, model_text):
+    """The best with its sources nearer and farther than the run's D (the
+    trained directions): per distance in FARTHER, its score and final
+    distances."""
+    out = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for distance in FARTHER:
+            config = os.path.join(tmp, f"d{distance:g}.config.txtpb")
+            with open(config, "w") as f:
+                f.write(with_guidance(model_text, "source_distance",
+                                      f"{distance:g}"))
+            r = simulate(animat, stem + ".json", config)
+            ds = r.get("source_distances", [])
+            out.append({"source_distance": distance, "status": r["status"],
+                        "fitness": r.get("fitness"), "source_distances": ds,
+                        "closer": sum(1 for d in ds
+                                      if d < distance - CLOSER)})
+    return out
 
 
 def knockouts(animat, db, individual):
@@ -168,6 +197,7 @@ def report_run(animat, path, name, seed, dest):
             "source_distances": other.get("source_distances", []),
             "closer": sum(1 for d in other.get("source_distances", [])
                           if d < source_distance - CLOSER)},
+        "other_distances": other_distances(animat, stem, s["model_text"]),
         "curve": [x["best_fitness"] for x in s["stats"]],
         "closer_by_generation": closer_by_generation(
             path, s["run_id"], source_distance),
@@ -197,6 +227,24 @@ def tables(runs):
             + (f"{u['fitness']:.4g}" if u["fitness"] is not None else "—")
             + f" | {u['closer']}/{len(ds)} | "
             + " ".join(f"{d:.2f}" for d in ds) + " |")
+    lines += ["", "| run | source distance D | status | score | score / D | "
+              "ends closer to | final distances |",
+              "|---|---:|---|---:|---:|---:|---|"]
+    for r in runs:
+        for o in sorted(r["other_distances"] + [{
+                "source_distance": r["source_distance"], "status": "ok",
+                "fitness": r["fitness"],
+                "source_distances": r["source_distances"],
+                "closer": r["closer"]}], key=lambda o: o["source_distance"]):
+            ds = o["source_distances"]
+            fit = o["fitness"]
+            lines.append(
+                f"| {r['name']} | {o['source_distance']:g} | "
+                f"{o['status'].lower()} | "
+                + (f"{fit:.4g} | {fit / o['source_distance']:.1%}"
+                   if fit is not None else "— | —")
+                + f" | {o['closer']}/{len(ds)} | "
+                + " ".join(f"{d:.2f}" for d in ds) + " |")
     lines += ["", "| run | generation | members ok | closer to every "
               "source |", "|---|---:|---:|---:|"]
     for r in runs:
