@@ -53,6 +53,23 @@ def guidance_of(model_text):
             float(distance.group(1)) if distance else 30.0)
 
 
+def closer_count(distances, source_distance):
+    """How many trials end at least CLOSER nearer their source than D."""
+    return sum(1 for d in distances if d < source_distance - CLOSER)
+
+
+def trial_summary(result, source_distance):
+    """A simulation's status, score, final distances and closer count."""
+    ds = result.get("source_distances", [])
+    return {"status": result["status"], "fitness": result.get("fitness"),
+            "source_distances": ds,
+            "closer": closer_count(ds, source_distance)}
+
+
+def distances_text(distances):
+    return " ".join(f"{d:.2f}" for d in distances)
+
+
 def closer_by_generation(path, run_id, source_distance):
     """Per completed generation: members ok, and of them those that end
     closer than they started to every trial's source by CLOSER (from
@@ -93,12 +110,10 @@ def untrained(animat, stem, model_text, dest, name):
     the simulation and draws its paths (DEST/NAME-untrained.svg)."""
     trials, _ = guidance_of(model_text)
     config = stem + ".untrained.config.txtpb"
-    with open(config, "w") as f:
-        f.write("# proto-file: proto/animat/v1/config.proto\n"
-                "# proto-message: animat.v1.Config\n"
-                f"# The model of run {name} with {2 * trials} trials, "
-                "in directions the run never saw (docs/results.md).\n")
-        f.write(with_guidance(model_text, "trials", 2 * trials))
+    rr.write_model(config, f"The model of run {name} with {2 * trials} "
+                   "trials, in directions the run never saw "
+                   "(docs/results.md).",
+                   with_guidance(model_text, "trials", 2 * trials))
     rr.run([animat, "figure", "guidance", "--genome", stem + ".json",
             "--config", config, "--every", "10", "-o",
             os.path.join(dest, f"{name}-untrained.svg")])
@@ -116,12 +131,8 @@ def other_distances(animat, stem, model_text):
             with open(config, "w") as f:
                 f.write(with_guidance(model_text, "source_distance",
                                       f"{distance:g}"))
-            r = simulate(animat, stem + ".json", config)
-            ds = r.get("source_distances", [])
-            out.append({"source_distance": distance, "status": r["status"],
-                        "fitness": r.get("fitness"), "source_distances": ds,
-                        "closer": sum(1 for d in ds
-                                      if d < distance - CLOSER)})
+            out.append({"source_distance": distance, **trial_summary(
+                simulate(animat, stem + ".json", config), distance)})
     return out
 
 
@@ -148,7 +159,7 @@ def knockout_rows(name, k, source_distance):
                     f"(node {entry.get('node', 0)})")
         r = entry["result"]
         ds = r.get("source_distances", [])
-        closer = sum(1 for d in ds if d < source_distance - CLOSER)
+        closer = closer_count(ds, source_distance)
         change = entry.get("fitness_change")
         paths = "".join([
             "from CHEMICAL " if entry.get("chemical_path") else "",
@@ -159,7 +170,7 @@ def knockout_rows(name, k, source_distance):
             + (f"{change:+.4g}" if change is not None else "—") + " | "
             + (f"{r['distance']:.2f}" if "distance" in r else "—") + " | "
             + f"{closer}/{len(ds)} | "
-            + " ".join(f"{d:.2f}" for d in ds) + f" | {paths or '—'} |")
+            + distances_text(ds) + f" | {paths or '—'} |")
     return rows
 
 
@@ -188,15 +199,9 @@ def report_run(animat, path, name, seed, dest):
         "best_id": best["id"], "best_generation": best["generation"],
         "fitness": best["fitness"], "distance": again["distance"],
         "energy": again["energy"], "source_distances": distances,
-        "closer": sum(1 for d in distances
-                      if d < source_distance - CLOSER),
+        "closer": closer_count(distances, source_distance),
         "genome": stem + ".json",
-        "untrained": {
-            "status": other["status"],
-            "fitness": other.get("fitness"),
-            "source_distances": other.get("source_distances", []),
-            "closer": sum(1 for d in other.get("source_distances", [])
-                          if d < source_distance - CLOSER)},
+        "untrained": trial_summary(other, source_distance),
         "other_distances": other_distances(animat, stem, s["model_text"]),
         "curve": [x["best_fitness"] for x in s["stats"]],
         "closer_by_generation": closer_by_generation(
@@ -216,7 +221,7 @@ def tables(runs):
             f"| {r['name']} | {r['generations']} | {r['initial_tried']:,} | "
             f"{r['best_id']} (g{r['best_generation']}) | {r['fitness']:.4g} |"
             f" {r['distance']:.2f} | {r['closer']}/{r['trials']} | "
-            + " ".join(f"{d:.2f}" for d in r["source_distances"]) + " |")
+            + distances_text(r["source_distances"]) + " |")
     lines += ["", "| run | untrained directions | status | score | ends "
               "closer to | final distances |", "|---|---:|---|---:|---:|---|"]
     for r in runs:
@@ -225,17 +230,17 @@ def tables(runs):
         lines.append(
             f"| {r['name']} | {len(ds)} | {u['status'].lower()} | "
             + (f"{u['fitness']:.4g}" if u["fitness"] is not None else "—")
-            + f" | {u['closer']}/{len(ds)} | "
-            + " ".join(f"{d:.2f}" for d in ds) + " |")
+            + f" | {u['closer']}/{len(ds)} | " + distances_text(ds) + " |")
     lines += ["", "| run | source distance D | status | score | score / D | "
               "ends closer to | final distances |",
               "|---|---:|---|---:|---:|---:|---|"]
     for r in runs:
-        for o in sorted(r["other_distances"] + [{
-                "source_distance": r["source_distance"], "status": "ok",
-                "fitness": r["fitness"],
-                "source_distances": r["source_distances"],
-                "closer": r["closer"]}], key=lambda o: o["source_distance"]):
+        own = {"source_distance": r["source_distance"], "status": "ok",
+               "fitness": r["fitness"],
+               "source_distances": r["source_distances"],
+               "closer": r["closer"]}
+        for o in sorted(r["other_distances"] + [own],
+                        key=lambda o: o["source_distance"]):
             ds = o["source_distances"]
             fit = o["fitness"]
             lines.append(
@@ -243,8 +248,7 @@ def tables(runs):
                 f"{o['status'].lower()} | "
                 + (f"{fit:.4g} | {fit / o['source_distance']:.1%}"
                    if fit is not None else "— | —")
-                + f" | {o['closer']}/{len(ds)} | "
-                + " ".join(f"{d:.2f}" for d in ds) + " |")
+                + f" | {o['closer']}/{len(ds)} | " + distances_text(ds) + " |")
     lines += ["", "| run | generation | members ok | closer to every "
               "source |", "|---|---:|---:|---:|"]
     for r in runs:

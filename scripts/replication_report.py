@@ -108,17 +108,24 @@ def store_summary(path):
     }
 
 
+def write_model(path, description, model_text):
+    """Writes MODEL_TEXT (an animat.v1.Config) to PATH as a text proto
+    file, headed by the comment DESCRIPTION."""
+    with open(path, "w") as f:
+        f.write("# proto-file: proto/animat/v1/config.proto\n"
+                "# proto-message: animat.v1.Config\n"
+                f"# {description}\n")
+        f.write(model_text)
+
+
 def write_best(animat, db, name, individual, model_text, dest):
     """Writes run NAME's individual from DB as DEST/bests/NAME-ID.json, with
     the model it ran under beside it (.config.txtpb); returns the stem."""
     stem = os.path.join(dest, "bests", f"{name}-{individual}")
     run([animat, "lineage", "genome", str(individual), "--db", db,
          "-o", stem + ".json"])
-    with open(stem + ".config.txtpb", "w") as f:
-        f.write("# proto-file: proto/animat/v1/config.proto\n"
-                "# proto-message: animat.v1.Config\n"
-                f"# The model of run {name} (docs/results.md).\n")
-        f.write(model_text)
+    write_model(stem + ".config.txtpb",
+                f"The model of run {name} (docs/results.md).", model_text)
     return stem
 
 
