@@ -184,23 +184,54 @@ BENCHMARK(BM_EvaluateIntegrator)
     ->DenseRange(0, 4)
     ->Unit(benchmark::kMillisecond);
 
-// The Bullet backend (the anchor the native integrators are measured
-// against): the same forces integrated by a Bullet world, without
-// (state.range(0) == 0) or with (1) cell-cell contacts.
-void BM_EvaluateBullet(benchmark::State& state) {
+// state.range(0): the contact rule, 0 NONE, 1 UNJOINED, 2 ALL.
+ContactRule RuleArg(int64_t arg) {
+  return arg == 0   ? ContactRule::kNone
+         : arg == 1 ? ContactRule::kUnjoined
+                    : ContactRule::kAll;
+}
+
+// The default evaluation under each contact rule (model §7.10): what
+// contacts cost.
+void BM_EvaluateContacts(benchmark::State& state) {
   const Genome& genome = BenchGenome();
   ModelConfig config;
-  config.physics.backend = PhysicsBackend::kBullet;
-  config.physics.contacts = state.range(0) == 1;
+  config.physics.contact_rule = RuleArg(state.range(0));
   EvaluationResult result;
   for (auto _ : state) {
     result = Evaluate(genome, config);
     benchmark::DoNotOptimize(result);
   }
-  state.SetLabel(config.physics.contacts ? "contacts" : "no contacts");
+  state.SetLabel(ContactRuleName(config.physics.contact_rule));
   state.counters["ok"] = result.status == EvalStatus::kOk;
 }
-BENCHMARK(BM_EvaluateBullet)->DenseRange(0, 1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_EvaluateContacts)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+
+// The Bullet backend (the anchor the native integrators are measured
+// against): the same forces integrated by a Bullet world, without
+// (state.range(0) == 0) or with cell-cell contacts between every pair (1,
+// model v2's "contacts") or unjoined pairs only (2).
+ContactRule BulletRuleArg(int64_t arg) {
+  return arg == 0   ? ContactRule::kNone
+         : arg == 1 ? ContactRule::kAll
+                    : ContactRule::kUnjoined;
+}
+
+void BM_EvaluateBullet(benchmark::State& state) {
+  const Genome& genome = BenchGenome();
+  ModelConfig config;
+  config.physics.backend = PhysicsBackend::kBullet;
+  config.physics.integrator = Integrator::kSemiImplicitEuler;
+  config.physics.contact_rule = BulletRuleArg(state.range(0));
+  EvaluationResult result;
+  for (auto _ : state) {
+    result = Evaluate(genome, config);
+    benchmark::DoNotOptimize(result);
+  }
+  state.SetLabel(ContactRuleName(config.physics.contact_rule));
+  state.counters["ok"] = result.status == EvalStatus::kOk;
+}
+BENCHMARK(BM_EvaluateBullet)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 
 // state.range(0): 0 non-viable, 1 too few cells, 2 no chamber, 3 late
 // division. The label is the status the evaluation gave.
@@ -273,7 +304,8 @@ void BM_PhysicsStep(benchmark::State& state) {
 }
 BENCHMARK(BM_PhysicsStep)->DenseRange(0, 4)->Unit(benchmark::kMicrosecond);
 
-// state.range(0): 0 springs, 1 pressure, 2 drag, alone.
+// state.range(0): 0 springs, 1 pressure, 2 drag, 3 contacts (UNJOINED),
+// alone.
 void BM_PhysicsForces(benchmark::State& state) {
   PhysicsSetup setup;
   SoftBody body(setup.d.body, PhysicsParams{});
@@ -281,7 +313,7 @@ void BM_PhysicsForces(benchmark::State& state) {
   MotionState motion = setup.Start();
   for (Vec2& v : motion.velocity) v = {0.01, -0.02};
   std::vector<Vec2> force(setup.d.body.nodes());
-  const char* const kLabels[] = {"springs", "pressure", "drag"};
+  const char* const kLabels[] = {"springs", "pressure", "drag", "contacts"};
   state.SetLabel(kLabels[state.range(0)]);
   for (auto _ : state) {
     switch (state.range(0)) {
@@ -291,21 +323,25 @@ void BM_PhysicsForces(benchmark::State& state) {
       case 1:
         body.AddPressureForces(motion, force.data());
         break;
-      default:
+      case 2:
         body.AddDragForces(motion, force.data());
+        break;
+      default:
+        body.AddContactForces(motion, force.data());
         break;
     }
     benchmark::DoNotOptimize(force.data());
   }
 }
-BENCHMARK(BM_PhysicsForces)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PhysicsForces)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
 
-// state.range(0): contacts off (0) or on (1).
+// state.range(0): as BM_EvaluateBullet's.
 void BM_BulletStep(benchmark::State& state) {
   PhysicsSetup setup;
   PhysicsParams params;
   params.backend = PhysicsBackend::kBullet;
-  params.contacts = state.range(0) == 1;
+  params.integrator = Integrator::kSemiImplicitEuler;
+  params.contact_rule = BulletRuleArg(state.range(0));
   SoftBody body(setup.d.body, params);
   body.SetActuation(setup.expand, setup.contract);
   std::unique_ptr<MotionStepper> bullet =
@@ -315,9 +351,9 @@ void BM_BulletStep(benchmark::State& state) {
     bullet->Step(&motion);
     benchmark::DoNotOptimize(motion.position.data());
   }
-  state.SetLabel(params.contacts ? "contacts" : "no contacts");
+  state.SetLabel(ContactRuleName(params.contact_rule));
 }
-BENCHMARK(BM_BulletStep)->DenseRange(0, 1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_BulletStep)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond);
 
 template <typename S>
 void BM_NetworkStep(benchmark::State& state) {

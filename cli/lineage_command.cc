@@ -70,6 +70,10 @@ int Best(const Options& o) {
       std::printf("distance: %s\n", ShortestDouble(*best->swum).c_str());
     if (best->energy)
       std::printf("energy: %s\n", ShortestDouble(*best->energy).c_str());
+    if (best->max_overlap) {
+      std::printf("max_overlap: %s\n",
+                  ShortestDouble(*best->max_overlap).c_str());
+    }
     if (!best->source_distances.empty()) {
       std::string list;
       for (double d : best->source_distances) {

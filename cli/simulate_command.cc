@@ -47,6 +47,7 @@ std::vector<Field> ResultFields(const EvaluationResult& r) {
   if (r.fitness) fields.push_back({"fitness", Exact(*r.fitness)});
   if (r.distance) fields.push_back({"distance", Exact(*r.distance)});
   if (r.energy) fields.push_back({"energy", Exact(*r.energy)});
+  if (r.max_overlap) fields.push_back({"max_overlap", Exact(*r.max_overlap)});
   fields.push_back({"cells", std::to_string(r.cells)});
   fields.push_back({"steps", std::to_string(r.steps)});
   if (r.state_hash != 0) {

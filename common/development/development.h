@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "common/base/vec2.h"
-#include "common/development/contact_pairs.h"
 #include "common/development/development_params.h"
 #include "common/development/signals.h"
+#include "common/geometry/contact_pairs.h"
 #include "common/geometry/gabriel.h"
 #include "common/grn/grn_batch.h"
 #include "common/grn/network.h"

@@ -71,6 +71,8 @@ struct Chemical {
 struct MotionOutcome {
   int64_t steps = 0;    // Motion steps run.
   std::string problem;  // Why it failed; "" when it ran to the end.
+  // The deepest unjoined overlap at the end of any step (model §8.6).
+  double max_overlap = 0.0;
 };
 
 // The motion phase from `*state` (model §7.7, §8.1), with the CHEMICAL
@@ -107,6 +109,8 @@ MotionOutcome RunMotion(const ModelConfig& config, GrnBatchT<S>& grn,
     soft_body.SetActuation(expand, contract);
     stepper.Step(state);
     ++outcome.steps;
+    outcome.max_overlap =
+        std::max(outcome.max_overlap, soft_body.DeepestUnjoinedOverlap(*state));
     if (CheckDue(step, ev.motion_steps, ev.check_interval)) {
       const std::string problem = CheckState(*state, ev.max_coordinate);
       if (!problem.empty()) {
@@ -142,15 +146,14 @@ struct TrialOutcome {
 // Runs every guidance trial from copies of the equilibrated state (the
 // development's network and signals, `soft_body`, `state`), on up to
 // options.threads threads; the result is summed in trial order once all
-// have finished, so it does not depend on the thread count.
+// have finished, so it does not depend on the thread count. `max_overlap`:
+// the deepest unjoined overlap of equilibration.
 template <typename S>
-EvaluationResult RunGuidanceTrials(const ModelConfig& config, const Body& body,
-                                   const BodySummary& summary,
-                                   const DevelopmentT<S>& development,
-                                   const SoftBody& soft_body,
-                                   const MotionState& state, int cells,
-                                   int64_t steps, EvaluationObserver* observer,
-                                   const EvaluateOptions& options) {
+EvaluationResult RunGuidanceTrials(
+    const ModelConfig& config, const Body& body, const BodySummary& summary,
+    const DevelopmentT<S>& development, const SoftBody& soft_body,
+    const MotionState& state, int cells, int64_t steps, double max_overlap,
+    EvaluationObserver* observer, const EvaluateOptions& options) {
   const GuidanceParams& g = config.guidance;
   const int trials = g.trials;
   const Vec2 start = CentreOfMass(state);
@@ -248,6 +251,7 @@ EvaluationResult RunGuidanceTrials(const ModelConfig& config, const Body& body,
     score += g.source_distance - out.source_distance;
     distance += out.distance;
     energy += out.energy;
+    max_overlap = std::max(max_overlap, out.motion.max_overlap);
     source_distances.push_back(out.source_distance);
     hash.AddU64(out.hash);
   }
@@ -270,6 +274,7 @@ EvaluationResult RunGuidanceTrials(const ModelConfig& config, const Body& body,
   result.distance = distance;
   result.energy = energy;
   result.source_distances = std::move(source_distances);
+  result.max_overlap = max_overlap;
   result.cells = cells;
   result.steps = steps;
   result.state_hash = hash.value();
@@ -359,6 +364,7 @@ EvaluationResult RunModel(const Network& network, const ModelConfig& config,
   MotionState state;
   state.position = body->position;
   state.velocity.assign(cells, Vec2{});
+  double max_overlap = soft_body.DeepestUnjoinedOverlap(state);
   if (observer) {
     observer->OnBody(*body, expand, contract);
     observer->OnMotionStep(MotionPhase::kEquilibration, 0, state, expand,
@@ -370,6 +376,8 @@ EvaluationResult RunModel(const Network& network, const ModelConfig& config,
     stepper.Step(&state);
     for (Vec2& v : state.velocity) v = v * ev.equilibration_damping;
     ++steps;
+    max_overlap =
+        std::max(max_overlap, soft_body.DeepestUnjoinedOverlap(state));
     if (CheckDue(step, ev.equilibration_steps, ev.check_interval)) {
       const std::string problem = CheckState(state, ev.max_coordinate);
       if (!problem.empty()) {
@@ -399,7 +407,8 @@ EvaluationResult RunModel(const Network& network, const ModelConfig& config,
   soft_body.ResetActuationWork();
   if (config.guidance.enabled) {
     return RunGuidanceTrials(config, *body, summary, development, soft_body,
-                             state, cells, steps, observer, options);
+                             state, cells, steps, max_overlap, observer,
+                             options);
   }
   const Vec2 start = CentreOfMass(state);
   const MotionOutcome motion = RunMotion(config, grn, field, soft_body, stepper,
@@ -427,6 +436,7 @@ EvaluationResult RunModel(const Network& network, const ModelConfig& config,
   result.fitness = Objective(ev, fitness, energy);
   result.distance = fitness;
   result.energy = energy;
+  result.max_overlap = std::max(max_overlap, motion.max_overlap);
   result.cells = cells;
   result.steps = steps;
   StateHash hash;
@@ -471,6 +481,7 @@ v1::EvaluationResult EvaluationResultToProto(const EvaluationResult& r) {
   if (r.energy) m.set_energy(*r.energy);
   if (r.distance) m.set_distance(*r.distance);
   for (double d : r.source_distances) m.add_source_distances(d);
+  if (r.max_overlap) m.set_max_overlap(*r.max_overlap);
   m.set_cells(r.cells);
   m.set_steps(r.steps);
   m.set_state_hash(r.state_hash);

@@ -68,6 +68,12 @@ struct EvaluationResult {
   // With guidance and kOk: the final distance from the centre of mass to
   // the source (radii), one per trial in trial order; otherwise empty.
   std::vector<double> source_distances;
+  // The deepest overlap of two cells not joined by a spring (model §8.6,
+  // v3): the largest (r_i + r_j - l) / (r_i + r_j) at the start of
+  // equilibration and the end of every step of equilibration and motion
+  // (every trial's, with guidance), 0 when none overlap; in [0, 1],
+  // whatever the contact rule. Only when kOk.
+  std::optional<double> max_overlap;
 };
 
 v1::EvaluationResult EvaluationResultToProto(const EvaluationResult& result);

@@ -42,6 +42,64 @@ const char* BackendName(PhysicsBackend backend) {
   return backend == PhysicsBackend::kBullet ? "bullet" : "native";
 }
 
+const char* ContactRuleName(ContactRule rule) {
+  switch (rule) {
+    case ContactRule::kNone:
+      return "none";
+    case ContactRule::kUnjoined:
+      return "unjoined";
+    case ContactRule::kAll:
+      return "all";
+  }
+  return "?";
+}
+
+namespace {
+
+// physics.contact_rule, or the deprecated physics.contacts of model v2.
+Status ContactRuleFromProto(const v1::PhysicsConfig& m, ContactRule* rule) {
+  if (m.has_contacts() && m.has_contact_rule()) {
+    return Status::InvalidArgument(
+        "physics.contacts: the model v2 form of physics.contact_rule "
+        "(false is NONE, true is ALL); give only contact_rule");
+  }
+  if (m.has_contacts()) {
+    *rule = m.contacts() ? ContactRule::kAll : ContactRule::kNone;
+    return Status::Ok();
+  }
+  if (!m.has_contact_rule()) return Status::Ok();
+  switch (m.contact_rule()) {
+    case v1::PhysicsConfig::CONTACT_RULE_UNSPECIFIED:
+      return Status::Ok();
+    case v1::PhysicsConfig::NONE:
+      *rule = ContactRule::kNone;
+      return Status::Ok();
+    case v1::PhysicsConfig::UNJOINED:
+      *rule = ContactRule::kUnjoined;
+      return Status::Ok();
+    case v1::PhysicsConfig::ALL:
+      *rule = ContactRule::kAll;
+      return Status::Ok();
+    default:
+      return Status::InvalidArgument("physics.contact_rule: unknown value " +
+                                     std::to_string(m.contact_rule()));
+  }
+}
+
+v1::PhysicsConfig::ContactRule ContactRuleToProto(ContactRule rule) {
+  switch (rule) {
+    case ContactRule::kNone:
+      return v1::PhysicsConfig::NONE;
+    case ContactRule::kUnjoined:
+      return v1::PhysicsConfig::UNJOINED;
+    case ContactRule::kAll:
+      return v1::PhysicsConfig::ALL;
+  }
+  return v1::PhysicsConfig::CONTACT_RULE_UNSPECIFIED;
+}
+
+}  // namespace
+
 Status PhysicsParamsFromProto(const v1::PhysicsConfig& m,
                               PhysicsParams* params) {
   PhysicsParams p = *params;
@@ -109,7 +167,11 @@ Status PhysicsParamsFromProto(const v1::PhysicsConfig& m,
                                        std::to_string(m.backend()));
     }
   }
-  if (m.has_contacts()) p.contacts = m.contacts();
+  if (Status rule = ContactRuleFromProto(m, &p.contact_rule); !rule.ok()) {
+    return rule;
+  }
+  if (m.has_contact_stiffness()) p.contact_stiffness = m.contact_stiffness();
+  if (m.has_contact_damping()) p.contact_damping = m.contact_damping();
   Status status = FirstError({
       RequirePositive("physics.mass", p.mass),
       RequireNonNegative("physics.stiffness", p.stiffness),
@@ -122,10 +184,8 @@ Status PhysicsParamsFromProto(const v1::PhysicsConfig& m,
                      /*include_hi=*/false),
       RequirePositive("physics.min_rest_fraction", p.min_rest_fraction),
       RequireIntInRange("physics.substeps", p.substeps, 1, 1024),
-      p.contacts && p.backend != PhysicsBackend::kBullet
-          ? Status::InvalidArgument(
-                "physics.contacts: contacts need backend BULLET")
-          : Status::Ok(),
+      RequireNonNegative("physics.contact_stiffness", p.contact_stiffness),
+      RequireNonNegative("physics.contact_damping", p.contact_damping),
       // Bullet integrates by semi-implicit Euler itself, with our forces
       // (drag among them) applied as given.
       p.backend == PhysicsBackend::kBullet &&
@@ -183,7 +243,9 @@ v1::PhysicsConfig PhysicsParamsToProto(const PhysicsParams& p) {
   m.set_backend(p.backend == PhysicsBackend::kBullet
                     ? v1::PhysicsConfig::BULLET
                     : v1::PhysicsConfig::NATIVE);
-  m.set_contacts(p.contacts);
+  m.set_contact_rule(ContactRuleToProto(p.contact_rule));
+  m.set_contact_stiffness(p.contact_stiffness);
+  m.set_contact_damping(p.contact_damping);
   return m;
 }
 

@@ -17,13 +17,21 @@ enum class Integrator {
 };
 enum class DragUpdate { kExplicit, kStable };
 enum class PhysicsBackend { kNative, kBullet };
+// Which overlapping pairs of cells push apart (docs/model.md §7.10).
+enum class ContactRule {
+  kNone,      // None (model v2): cells pass through each other.
+  kUnjoined,  // Pairs not joined by a spring (model v3's default).
+  kAll        // Every pair, joined ones too.
+};
 
 // "semi_implicit_euler", "velocity_verlet", "rk4", "ssprk3", "ralston3";
 // "explicit", "stable";
-// "native", "bullet".
+// "native", "bullet";
+// "none", "unjoined", "all".
 const char* IntegratorName(Integrator integrator);
 const char* DragUpdateName(DragUpdate drag);
 const char* BackendName(PhysicsBackend backend);
+const char* ContactRuleName(ContactRule rule);
 
 struct PhysicsParams {
   double mass = 1.0;               // Of every cell.
@@ -41,14 +49,21 @@ struct PhysicsParams {
   int substeps = 1;  // Physics sub-steps per simulation step.
   DragUpdate drag_update = DragUpdate::kExplicit;
   PhysicsBackend backend = PhysicsBackend::kNative;
-  bool contacts = false;  // Cell-cell contacts (Bullet backend only).
+  ContactRule contact_rule = ContactRule::kUnjoined;
+  // k_c (force per radius of overlap) and gamma_c (force per unit approach
+  // speed) of the native backend's contacts; Bullet's world uses its own
+  // contact solver.
+  double contact_stiffness = 50.0;
+  double contact_damping = 0.5;
 };
 
 // Overwrites the fields present after checking them; on error `params` is
-// unchanged and the message names the field ("physics.mass: ...").
+// unchanged and the message names the field ("physics.mass: ..."). The
+// deprecated physics.contacts (model v2) reads as contact_rule NONE when
+// false and ALL when true; giving it with contact_rule is an error.
 Status PhysicsParamsFromProto(const v1::PhysicsConfig& message,
                               PhysicsParams* params);
-// Every field set.
+// Every field set but the deprecated physics.contacts.
 v1::PhysicsConfig PhysicsParamsToProto(const PhysicsParams& params);
 
 }  // namespace animat

@@ -21,7 +21,9 @@ constexpr SoftBody::Rk3Tableau kRalston3Tableau = {
 }  // namespace
 
 SoftBody::SoftBody(const Body& body, const PhysicsParams& params)
-    : params_(params), nodes_(body.nodes()) {
+    : params_(params),
+      nodes_(body.nodes()),
+      contacts_(body, params, params.backend == PhysicsBackend::kNative) {
   for (const Spring& s : body.springs) {
     spring_a_.push_back(s.a);
     spring_b_.push_back(s.b);
@@ -160,6 +162,11 @@ void SoftBody::ComputeForces(const MotionState& state, std::vector<Vec2>* force,
   }
   AddPressureForces(state, force->data());
   if (drag) AddDragForces(state, force->data());
+  AddContactForces(state, force->data());
+}
+
+void SoftBody::AddContactForces(const MotionState& state, Vec2* force) {
+  contacts_.AddForces(state.position, state.velocity, force);
 }
 
 void SoftBody::Step(MotionState* state) {
@@ -237,11 +244,11 @@ void SoftBody::Measure(const std::vector<Vec2>& position,
 }
 
 void SoftBody::AccelerationFrom(const Geometry& geometry,
-                                const std::vector<Vec2>& velocity, bool drag,
-                                std::vector<Vec2>* out) const {
+                                const MotionState& state, bool drag,
+                                std::vector<Vec2>* out) {
   std::vector<Vec2>& force = *out;
   force = geometry.pressure;
-  const Vec2* v = velocity.data();
+  const Vec2* v = state.velocity.data();
   const double k = params_.stiffness;
   const double gamma = params_.damping;
   for (size_t s = 0; s < rest_.size(); ++s) {
@@ -274,6 +281,7 @@ void SoftBody::AccelerationFrom(const Geometry& geometry,
       force[b] += half;
     }
   }
+  AddContactForces(state, force.data());
   DivideByMass(out);
 }
 
@@ -298,7 +306,7 @@ void SoftBody::VerletStep(double h, bool drag, MotionState* state) {
     work_ += work;
     work_pending_ = false;
   }
-  AccelerationFrom(geometry_, state->velocity, drag, &a0);
+  AccelerationFrom(geometry_, *state, drag, &a0);
   stage_.position.resize(nodes_);
   stage_.velocity.resize(nodes_);
   const double half_h2 = 0.5 * h * h;
@@ -308,7 +316,7 @@ void SoftBody::VerletStep(double h, bool drag, MotionState* state) {
     stage_.velocity[i] = state->velocity[i] + a0[i] * h;
   }
   Measure(stage_.position, &next_geometry_);
-  AccelerationFrom(next_geometry_, stage_.velocity, drag, &a1);
+  AccelerationFrom(next_geometry_, stage_, drag, &a1);
   const double half_h = 0.5 * h;
   for (int i = 0; i < nodes_; ++i) {
     state->position[i] = stage_.position[i];

@@ -16,6 +16,7 @@
 #include "common/base/hash.h"
 #include "common/base/vec2.h"
 #include "common/body/body.h"
+#include "common/physics/contacts.h"
 #include "common/physics/physics_params.h"
 
 namespace animat {
@@ -70,14 +71,23 @@ class SoftBody : public MotionStepper {
   double actuation_work() const { return work_; }
   void ResetActuationWork() { work_ = 0.0; }
 
-  // Total force on every node at `state`: springs, pressure, and drag
-  // unless `drag` is false.
+  // Total force on every node at `state`: springs, pressure, drag unless
+  // `drag` is false, then contacts (model §7.10) on the native backend
+  // (the Bullet backend's world makes its own).
   void ComputeForces(const MotionState& state, std::vector<Vec2>* force,
                      bool drag = true);
   // Each force family alone (for tests and analysis); forces are added.
   void AddSpringForces(const MotionState& state, Vec2* force) const;
   void AddPressureForces(const MotionState& state, Vec2* force) const;
   void AddDragForces(const MotionState& state, Vec2* force) const;
+  void AddContactForces(const MotionState& state, Vec2* force);
+
+  // The deepest overlap of two cells not joined by a spring at `state`
+  // (model §8.6), whatever the contact rule: Contacts::
+  // DeepestUnjoinedOverlap.
+  double DeepestUnjoinedOverlap(const MotionState& state) {
+    return contacts_.DeepestUnjoinedOverlap(state.position);
+  }
 
   // One simulation step of dt in params().substeps sub-steps of
   // h = dt / substeps, each by params().integrator:
@@ -120,6 +130,7 @@ class SoftBody : public MotionStepper {
   std::vector<int> walk_next_;          // The node after walk_[k] in its walk.
   std::vector<double> rest_area_;
   std::vector<int> skin_a_, skin_b_;
+  Contacts contacts_;
   // Springs' forces added to `force`; returns, with kWork, the work of
   // the last rest-length change at `state` (actuation_work()), else 0.
   template <bool kWork>
@@ -143,12 +154,11 @@ class SoftBody : public MotionStepper {
   void Measure(const std::vector<Vec2>& position, Geometry* geometry) const;
   // Pressure (AddPressureForces) at positions x.
   void AddPressure(const Vec2* x, Vec2* force) const;
-  // out <- F / m from the geometry of the positions, the velocities and the
-  // current rest lengths: pressure, then springs, then drag, each in index
-  // order.
-  void AccelerationFrom(const Geometry& geometry,
-                        const std::vector<Vec2>& velocity, bool drag,
-                        std::vector<Vec2>* out) const;
+  // out <- F / m from the geometry of `state`'s positions, its velocities
+  // and the current rest lengths: pressure, then springs, then drag, then
+  // contacts, each in index order.
+  void AccelerationFrom(const Geometry& geometry, const MotionState& state,
+                        bool drag, std::vector<Vec2>* out);
   // F <- F / m, node by node.
   void DivideByMass(std::vector<Vec2>* force) const;
   // force_ <- acceleration F / m at `state`.

@@ -211,6 +211,16 @@ Status ValidateResult(const v1::EvaluationResult& r) {
                                      ShortestDouble(value));
     }
   }
+  // The deepest unjoined overlap (model §8.6): a share of r_i + r_j.
+  if (r.has_max_overlap() && !ok) {
+    return Status::InvalidArgument("max_overlap present without status OK");
+  }
+  if (r.has_max_overlap() &&
+      !(std::isfinite(r.max_overlap()) && r.max_overlap() >= 0.0 &&
+        r.max_overlap() <= 1.0)) {
+    return Status::InvalidArgument(
+        "max_overlap " + ShortestDouble(r.max_overlap()) + " outside [0, 1]");
+  }
   Status status = CheckString("reason", r.reason(), kMaxReasonBytes);
   if (!status.ok()) return status;
   if (r.cells() < 0) {

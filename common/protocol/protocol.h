@@ -24,7 +24,7 @@ namespace animat::protocol {
 inline constexpr uint32_t kVersion = 1;
 
 // The version of the model this build implements (docs/model.md §12).
-inline constexpr int kModelVersion = 2;
+inline constexpr int kModelVersion = 3;
 
 // Default heartbeat interval; a peer silent for kLiveness intervals is
 // presumed dead.

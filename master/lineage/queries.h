@@ -38,6 +38,10 @@ struct Summary {
   // Best only.
   std::optional<double> swum;
   std::optional<double> energy;
+  // The deepest overlap of two unjoined cells (docs/model.md §8.6), when
+  // its evaluation is ok and the store recorded it (schema version 8 on);
+  // filled by Best only.
+  std::optional<double> max_overlap;
   // With active guidance, each trial's final distance to its source
   // (radii), in trial order (schema version 7 on); empty otherwise. Filled
   // by Best only.

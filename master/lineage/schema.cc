@@ -336,6 +336,35 @@ CREATE TABLE trials (
   PRIMARY KEY (run_id, id, trial)
 ) WITHOUT ROWID;
 )sql",
+    // 7 -> 8: each ok evaluation records the deepest overlap of two cells
+    // not joined by a spring (docs/model.md §8.6, model v3), so that "do
+    // bodies pass through themselves" is a query. NULL for the others and
+    // for evaluations recorded before. The view individuals appends the
+    // new column after schema version 7's, so queries read as before.
+    R"sql(
+ALTER TABLE evaluations ADD COLUMN max_overlap REAL;
+
+DROP VIEW line_of_descent;
+DROP VIEW individuals;
+CREATE VIEW individuals AS
+  SELECT b.run_id, b.id, b.generation, b.operators, b.genome, b.genome_hash,
+         b.elements, b.created_at, e.status, e.reason, e.fitness, e.cells,
+         e.steps, e.wall_seconds, e.worker, e.state_hash, e.evaluated_at,
+         e.springs, e.chambers, e.skin_edges, e.spread_major, e.spread_minor,
+         e.distance, e.energy, e.max_overlap
+  FROM births b LEFT JOIN evaluations e
+    ON e.run_id = b.run_id AND e.id = b.id;
+
+CREATE VIEW line_of_descent AS
+  WITH RECURSIVE line (run_id, id, step) AS (
+    SELECT run_id, id, 0 FROM best
+    UNION ALL
+    SELECT line.run_id, p.parent, line.step + 1
+    FROM line JOIN parents p
+      ON p.run_id = line.run_id AND p.child = line.id AND p.position = 0)
+  SELECT line.run_id, line.step, i.id, i.generation, i.operators, i.fitness
+  FROM line JOIN individuals i ON i.run_id = line.run_id AND i.id = line.id;
+)sql",
 };
 
 constexpr int kKnown = static_cast<int>(std::size(kMigrations));

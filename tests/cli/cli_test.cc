@@ -106,14 +106,15 @@ TEST(CliTest, SimulatePrintsStatusAndFitness) {
                              " --config " + ShortConfig());
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const std::vector<std::string> lines = Lines(run.output);
-  ASSERT_GE(lines.size(), 6u);
+  ASSERT_GE(lines.size(), 7u);
   EXPECT_EQ(lines[0], "status: ok");
   EXPECT_EQ(lines[1].rfind("fitness: ", 0), 0u);
   // Under the paper's fitness the distance is the fitness.
   EXPECT_EQ(lines[2], "distance: " + lines[1].substr(9));
   EXPECT_EQ(lines[3].rfind("energy: ", 0), 0u);
-  EXPECT_EQ(lines[4], "cells: 32");
-  EXPECT_EQ(lines[5], "steps: 800");
+  EXPECT_EQ(lines[4].rfind("max_overlap: ", 0), 0u);
+  EXPECT_EQ(lines[5], "cells: 32");
+  EXPECT_EQ(lines[6], "steps: 800");
 }
 
 // "key: value" lines as a map, in order.
@@ -168,8 +169,8 @@ TEST(CliTest, SimulatePrintsTheBodyItBuilt) {
   std::vector<std::string> keys;
   for (const auto& [key, value] : lines) keys.push_back(key);
   EXPECT_EQ(keys, (std::vector<std::string>{
-                      "status", "fitness", "distance", "energy", "cells",
-                      "steps", "state_hash", "springs", "chambers",
+                      "status", "fitness", "distance", "energy", "max_overlap",
+                      "cells", "steps", "state_hash", "springs", "chambers",
                       "skin_edges", "spread_major", "spread_minor"}));
   ASSERT_EQ(lines.size(), keys.size());
   EXPECT_GT(std::stoi(lines[8].second), 0);  // Chambers.

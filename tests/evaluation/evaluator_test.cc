@@ -321,10 +321,15 @@ TEST(EvaluatorTest, ResultConvertsToProto) {
   EXPECT_EQ(m.status(), v1::EvaluationResult::OK);
   ASSERT_TRUE(m.has_fitness());  // A fitness of 0 is still present.
   EXPECT_EQ(m.fitness(), 0.0);
-  EXPECT_EQ(EvaluationResultToProto(
-                {EvalStatus::kInvalidGenome, "", {}, 0, 0, 0, {}, {}, {}, {}})
-                .status(),
-            v1::EvaluationResult::INVALID_GENOME);
+  EXPECT_FALSE(m.has_max_overlap());
+  r.max_overlap = 0.0;  // No overlap is still reported.
+  ASSERT_TRUE(EvaluationResultToProto(r).has_max_overlap());
+  EXPECT_EQ(EvaluationResultToProto(r).max_overlap(), 0.0);
+  EXPECT_EQ(
+      EvaluationResultToProto(
+          {EvalStatus::kInvalidGenome, "", {}, 0, 0, 0, {}, {}, {}, {}, {}})
+          .status(),
+      v1::EvaluationResult::INVALID_GENOME);
 }
 
 }  // namespace

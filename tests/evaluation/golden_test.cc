@@ -37,12 +37,13 @@ TEST_P(GoldenTest, FitnessBitsAndFinalStateAreFixed) {
   ASSERT_TRUE(genome.ok());
   ModelConfig config;
   config.grn.precision = golden.precision;
-  // The values below were recorded under model v1: chains allowed and
-  // semi-implicit Euler with one sub-step. `min_chambers: 0` with that
-  // integrator reproduces them bit for bit.
+  // The values below were recorded under model v1: chains allowed,
+  // semi-implicit Euler with one sub-step, no contacts. `min_chambers: 0`
+  // with that integrator and contact rule reproduces them bit for bit.
   config.evaluation.min_chambers = 0;
   config.physics.integrator = Integrator::kSemiImplicitEuler;
   config.physics.substeps = 1;
+  config.physics.contact_rule = ContactRule::kNone;
   const EvaluationResult r = Evaluate(*genome, config);
   ASSERT_EQ(r.status, EvalStatus::kOk) << r.reason;
   ASSERT_TRUE(r.fitness.has_value());
@@ -59,9 +60,25 @@ TEST_P(GoldenTest, FitnessBitsAndFinalStateAreFixed) {
 class GoldenRk4Test : public ::testing::TestWithParam<Golden> {};
 
 // The default configuration of model v2: the chamber rule and Ralston's
-// third order with one sub-step (model §7.6's rule). Recorded when it
-// became the default.
-class GoldenDefaultTest : public ::testing::TestWithParam<Golden> {};
+// third order with one sub-step (model §7.6's rule), no contacts. Recorded
+// when it became the default.
+class GoldenRalston3Test : public ::testing::TestWithParam<Golden> {};
+
+// The default configuration of model v3: model v2's with contacts between
+// unjoined cells (model §7.10). Recorded when it became the default, with
+// the deepest unjoined overlap (model §8.6).
+struct GoldenV3 {
+  Golden golden;
+  uint64_t max_overlap_bits;
+};
+class GoldenDefaultTest : public ::testing::TestWithParam<GoldenV3> {};
+
+// The model v2 configuration the golden values were recorded under.
+ModelConfig ModelV2() {
+  ModelConfig config;
+  config.physics.contact_rule = ContactRule::kNone;
+  return config;
+}
 
 EvaluationResult EvaluateGolden(const Golden& golden, ModelConfig config) {
   v1::Genome message;
@@ -85,13 +102,25 @@ void ExpectGolden(const Golden& golden, const EvaluationResult& r) {
 }
 
 TEST_P(GoldenRk4Test, FitnessBitsAndFinalStateAreFixed) {
-  ModelConfig config;
+  ModelConfig config = ModelV2();
   config.physics.integrator = Integrator::kRk4;
   ExpectGolden(GetParam(), EvaluateGolden(GetParam(), config));
 }
 
+TEST_P(GoldenRalston3Test, FitnessBitsAndFinalStateAreFixed) {
+  ModelConfig config = ModelV2();
+  config.physics.integrator = Integrator::kRalston3;
+  ExpectGolden(GetParam(), EvaluateGolden(GetParam(), config));
+}
+
 TEST_P(GoldenDefaultTest, FitnessBitsAndFinalStateAreFixed) {
-  ExpectGolden(GetParam(), EvaluateGolden(GetParam(), ModelConfig()));
+  const GoldenV3& v3 = GetParam();
+  const EvaluationResult r = EvaluateGolden(v3.golden, ModelConfig());
+  ExpectGolden(v3.golden, r);
+  ASSERT_TRUE(r.max_overlap.has_value());
+  EXPECT_EQ(std::bit_cast<uint64_t>(*r.max_overlap), v3.max_overlap_bits)
+      << "max_overlap " << *r.max_overlap << " bits " << std::hex
+      << std::bit_cast<uint64_t>(*r.max_overlap);
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -106,7 +135,7 @@ INSTANTIATE_TEST_SUITE_P(
                              0x3e243d8f0199d074ull, 0x379475141da9ba33ull}));
 
 INSTANTIATE_TEST_SUITE_P(
-    Genomes, GoldenDefaultTest,
+    Genomes, GoldenRalston3Test,
     ::testing::Values(Golden{"seed-1198.json", Precision::kFloat,
                              0x3fbeaa47b9299a91ull, 0x9fc1c0d8d2fe788eull},
                       Golden{"seed-1198.json", Precision::kDouble,
@@ -115,6 +144,22 @@ INSTANTIATE_TEST_SUITE_P(
                              0x3e2431dbeefb6b64ull, 0x8fff975d5c4c46bfull},
                       Golden{"seed-139.json", Precision::kDouble,
                              0x3e2441b81b71c39cull, 0x857f9c496b95312aull}));
+
+INSTANTIATE_TEST_SUITE_P(
+    Genomes, GoldenDefaultTest,
+    ::testing::Values(GoldenV3{{"seed-1198.json", Precision::kFloat,
+                                0x3fbfc533a3c5b38eull, 0x303816d6a233145eull},
+                               0x3f55aea4cf2bfa00ull},
+                      GoldenV3{{"seed-1198.json", Precision::kDouble,
+                                0x3fbfc534e173fae0ull, 0x2cf7119763710f01ull},
+                               0x3f55aea2f671f000ull},
+                      // No two unjoined cells ever overlap: model v2's bits.
+                      GoldenV3{{"seed-139.json", Precision::kFloat,
+                                0x3e2431dbeefb6b64ull, 0x8fff975d5c4c46bfull},
+                               0},
+                      GoldenV3{{"seed-139.json", Precision::kDouble,
+                                0x3e2441b81b71c39cull, 0x857f9c496b95312aull},
+                               0}));
 
 // Under model v2 the chamber rule changes nothing for a body with chambers:
 // the same bits as with min_chambers 0.
@@ -125,8 +170,8 @@ TEST(GoldenTest, ChamberRuleLeavesChamberedBodiesBitIdentical) {
           .ok());
   Result<Genome> genome = GenomeFromProto(message);
   ASSERT_TRUE(genome.ok());
-  ModelConfig with_rule;
-  ModelConfig without_rule;
+  ModelConfig with_rule = ModelV2();
+  ModelConfig without_rule = ModelV2();
   without_rule.evaluation.min_chambers = 0;
   const EvaluationResult a = Evaluate(*genome, with_rule);
   const EvaluationResult b = Evaluate(*genome, without_rule);

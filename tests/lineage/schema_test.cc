@@ -379,7 +379,7 @@ TEST(SchemaTest, Version3StoreGainsBodyColumnsNullInEveryOldRow) {
     // Version 3's columns first, in order, then the body's.
     std::vector<std::vector<std::string>> names =
         Rows(**store, "SELECT name FROM pragma_table_info('individuals')");
-    ASSERT_EQ(names.size(), 24u);
+    ASSERT_EQ(names.size(), 25u);
     for (size_t c = 0; c < kBodyColumns.size(); ++c) {
       EXPECT_EQ(names[17 + c][0], kBodyColumns[c]);
     }
@@ -387,6 +387,7 @@ TEST(SchemaTest, Version3StoreGainsBodyColumnsNullInEveryOldRow) {
     // Then version 6's distance swum and energy, NULL in every old row.
     EXPECT_EQ(names[22][0], "distance");
     EXPECT_EQ(names[23][0], "energy");
+    EXPECT_EQ(names[24][0], "max_overlap");  // Version 8's.
     EXPECT_EQ(Value(**store,
                     "SELECT COUNT(*) FROM individuals"
                     " WHERE distance IS NOT NULL OR energy IS NOT NULL"),
@@ -509,8 +510,12 @@ TEST(SchemaTest, Version6StoreGainsAnEmptyTrialsTable) {
 
   Result<std::unique_ptr<Store>> store = Store::Open(file.path());
   ASSERT_TRUE(store.ok()) << store.status().ToString();
-  EXPECT_EQ(UserVersion(file.path()), 7);
-  EXPECT_EQ(Rows(**store, "SELECT * FROM individuals ORDER BY id"), before);
+  EXPECT_EQ(UserVersion(file.path()), kSchemaVersion);
+  // Every column as before; later versions' columns follow, NULL.
+  std::vector<std::vector<std::string>> after =
+      Rows(**store, "SELECT * FROM individuals ORDER BY id");
+  for (std::vector<std::string>& row : after) row.resize(before[0].size());
+  EXPECT_EQ(after, before);
   EXPECT_EQ(Value(**store, "SELECT COUNT(*) FROM trials"), "0");
 
   Evaluation guided = ::animat::testing::OkEvaluation(1, 1.0);
@@ -519,6 +524,52 @@ TEST(SchemaTest, Version6StoreGainsAnEmptyTrialsTable) {
   ASSERT_TRUE((*store)->RecordEvaluations(1, {guided}).ok());
   EXPECT_EQ(Rows(**store, "SELECT id, trial FROM trials ORDER BY trial"),
             (std::vector<std::vector<std::string>>{{"1", "0"}, {"1", "1"}}));
+}
+
+// A store written by schema version 7 gains max_overlap, the last column of
+// individuals, NULL in every old row; the other columns read as before, and
+// results recorded after have it.
+TEST(SchemaTest, Version7StoreGainsMaxOverlapNullInEveryOldRow) {
+  TempStorePath file("v7");
+  {
+    Result<std::unique_ptr<sql::Database>> db =
+        sql::Database::Open(file.path());
+    ASSERT_TRUE(db.ok()) << db.status().ToString();
+    ASSERT_TRUE(Migrate(**db, 7).ok());
+    const Status written = (*db)->Execute(
+        "INSERT INTO runs VALUES (1, 5, x'0a00', 'text', '00000000000000ff',"
+        " 'build', '2026-01-01T00:00:00.000Z', NULL, 'running');"
+        "INSERT INTO births VALUES"
+        " (1, 0, 0, 'random', x'0a0b0c', '0000000000000001', 3, 't0'),"
+        " (1, 1, 0, 'random', x'0a0b0d', '0000000000000002', 3, 't1');"
+        "INSERT INTO evaluations (run_id, id, status, reason, fitness,"
+        " distance, energy) VALUES (1, 0, 'ok', '', 0.5, 0.5, 12.0);");
+    ASSERT_TRUE(written.ok()) << written.ToString();
+  }
+  const std::vector<std::vector<std::string>> before =
+      RawRows(file.path(), "SELECT * FROM individuals ORDER BY id");
+  ASSERT_EQ(before.size(), 2u);
+
+  Result<std::unique_ptr<Store>> store = Store::Open(file.path());
+  ASSERT_TRUE(store.ok()) << store.status().ToString();
+  EXPECT_EQ(UserVersion(file.path()), 8);
+  std::vector<std::vector<std::string>> names =
+      Rows(**store, "SELECT name FROM pragma_table_info('individuals')");
+  ASSERT_EQ(names.size(), before[0].size() + 1);
+  EXPECT_EQ(names.back()[0], "max_overlap");
+  std::vector<std::vector<std::string>> after =
+      Rows(**store, "SELECT * FROM individuals ORDER BY id");
+  for (std::vector<std::string>& row : after) {
+    EXPECT_EQ(row.back(), "NULL");
+    row.pop_back();
+  }
+  EXPECT_EQ(after, before);
+
+  Evaluation folded = ::animat::testing::OkEvaluation(1, 1.0);
+  folded.result.set_max_overlap(0.125);
+  ASSERT_TRUE((*store)->RecordEvaluations(1, {folded}).ok());
+  EXPECT_EQ(Value(**store, "SELECT MAX(max_overlap) FROM individuals"),
+            "0.125");
 }
 
 // An individual of a realistic genome (about 1 kB) costs about its size on

@@ -155,6 +155,29 @@ TEST(ValidateResultTest, RefusesADistanceOrEnergyNotFiniteNonNegativeOrNotOk) {
   EXPECT_EQ(Refusal(r), "energy present without status OK");
 }
 
+TEST(ValidateResultTest, RefusesAnOverlapOutsideTheUnitIntervalOrNotOk) {
+  v1::EvaluationResult r = OkWithBody();
+  for (const double fine : {0.0, 0.25, 1.0}) {
+    r.set_max_overlap(fine);
+    EXPECT_TRUE(protocol::ValidateResult(r).ok()) << fine;
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  r.set_max_overlap(nan);
+  EXPECT_EQ(Refusal(r), "max_overlap nan outside [0, 1]");
+  r.set_max_overlap(inf);
+  EXPECT_EQ(Refusal(r), "max_overlap inf outside [0, 1]");
+  r.set_max_overlap(-0.01);
+  EXPECT_EQ(Refusal(r), "max_overlap -0.01 outside [0, 1]");
+  r.set_max_overlap(1.5);
+  EXPECT_EQ(Refusal(r), "max_overlap 1.5 outside [0, 1]");
+  r = OkWithBody();
+  r.set_status(v1::EvaluationResult::NUMERICAL_FAILURE);
+  r.clear_fitness();
+  r.set_max_overlap(0.5);
+  EXPECT_EQ(Refusal(r), "max_overlap present without status OK");
+}
+
 TEST(ValidateResultTest, ABadBodyIsRefusedWhateverTheStatus) {
   v1::EvaluationResult r = OkWithBody();
   r.set_status(v1::EvaluationResult::NUMERICAL_FAILURE);

@@ -19,7 +19,9 @@ namespace {
 // narrowphase, no contact manifold, no contact constraint ever exists, and
 // the solver sees only our forces. (What remains is the broadphase refitting
 // each sphere's bounding box every step, a small cost.) With contacts every
-// cell is in one group that collides with itself.
+// cell is in one group that collides with itself; under the UNJOINED rule
+// the two cells of every spring also ignore each other
+// (setIgnoreCollisionCheck), so the dispatcher makes no contact for them.
 constexpr int kNoGroup = 0;
 constexpr int kCellGroup = 1;
 
@@ -76,8 +78,9 @@ BulletStepper::BulletStepper(SoftBody* forces, const Body& body)
   // Before adding bodies: addRigidBody gives each the world's gravity.
   world_->setGravity(btVector3(0, 0, 0));
 
-  const int group = params.contacts ? kCellGroup : kNoGroup;
-  const int mask = params.contacts ? kCellGroup : kNoGroup;
+  const bool contacts = params.contact_rule != ContactRule::kNone;
+  const int group = contacts ? kCellGroup : kNoGroup;
+  const int mask = contacts ? kCellGroup : kNoGroup;
   const btScalar mass = params.mass;
   for (int i = 0; i < body.nodes(); ++i) {
     const double radius =
@@ -108,6 +111,12 @@ BulletStepper::BulletStepper(SoftBody* forces, const Body& body)
     rb->forceActivationState(DISABLE_DEACTIVATION);  // Never sleeps.
     world_->addRigidBody(rb, group, mask);
     rb->setGravity(btVector3(0, 0, 0));
+  }
+  if (params.contact_rule == ContactRule::kUnjoined) {
+    for (const Spring& s : body.springs) {
+      bodies_[s.a]->setIgnoreCollisionCheck(bodies_[s.b].get(), true);
+      bodies_[s.b]->setIgnoreCollisionCheck(bodies_[s.a].get(), true);
+    }
   }
 }
 

@@ -7,9 +7,11 @@
 // (springs, pressure, explicit drag) as central forces and lets Bullet take
 // exactly one step, which is semi-implicit Euler: v <- v + F (1/m) h, then
 // x <- x + v h. Without contacts it agrees with SoftBody's own
-// semi-implicit Euler to rounding (docs/model.md, "Backends"). With
-// params.contacts, cells also collide as spheres (Bullet's collision
-// detection and contact solver; see bullet_stepper.cc for the constants).
+// semi-implicit Euler to rounding (docs/model.md, "Backends"). With a
+// contact rule other than NONE, cells also collide as spheres (Bullet's
+// collision detection and contact solver; see bullet_stepper.cc for the
+// constants): every pair under ALL, the pairs not joined by a spring under
+// UNJOINED (the model's k_c and gamma_c are not used).
 //
 // Bullet is built in double precision (BT_USE_DOUBLE_PRECISION, which this
 // target exports to every includer). This header exposes no Bullet type.

@@ -71,10 +71,13 @@ MotionState AtRest(const Body& body) {
   return state;
 }
 
+// Bullet without contacts, where it must agree with the native
+// semi-implicit Euler.
 PhysicsParams BulletParams() {
   PhysicsParams params;
   params.backend = PhysicsBackend::kBullet;
   params.integrator = Integrator::kSemiImplicitEuler;  // Bullet's own.
+  params.contact_rule = ContactRule::kNone;
   return params;
 }
 
@@ -185,13 +188,13 @@ struct Approach {
   double closest = 0.0;
   double final = 0.0;
 };
-Approach RunApproach(bool contacts, double start) {
+Approach RunApproach(ContactRule rule, double start) {
   Body body;
   body.position = {{0, 0}, {start, 0}};
   body.radius = {1.0, 0.5};
   body.springs.push_back({0, 1, 0.01});
   PhysicsParams params = BulletParams();
-  params.contacts = contacts;
+  params.contact_rule = rule;
   SoftBody forces(body, params);
   std::unique_ptr<MotionStepper> bullet = MakeBulletStepper(&forces, body);
   MotionState state = AtRest(body);
@@ -213,8 +216,8 @@ TEST(BulletStepperTest, WithContactsCellsStopAtTouching) {
   // at impact they sink in by up to one step's approach before the contact
   // pushes them apart. From 6 apart they meet at a closing speed of about
   // 26 (1.3 per step); from 2 apart at about 3 (0.16 per step).
-  const Approach fast = RunApproach(/*contacts=*/true, 6.0);
-  const Approach slow = RunApproach(/*contacts=*/true, 2.0);
+  const Approach fast = RunApproach(ContactRule::kAll, 6.0);
+  const Approach slow = RunApproach(ContactRule::kAll, 2.0);
   std::printf("  from 6: closest %.6g, final %.9g (touching at 1.5)\n",
               fast.closest, fast.final);
   std::printf("  from 2: closest %.6g, final %.9g\n", slow.closest, slow.final);
@@ -226,10 +229,43 @@ TEST(BulletStepperTest, WithContactsCellsStopAtTouching) {
 }
 
 TEST(BulletStepperTest, WithoutContactsCellsPassThroughEachOther) {
-  const Approach a = RunApproach(/*contacts=*/false, 6.0);
+  const Approach a = RunApproach(ContactRule::kNone, 6.0);
   std::printf("  no contacts: closest %.6g, final %.6g\n", a.closest, a.final);
   EXPECT_LT(a.closest, 0.0);           // Passed each other.
   EXPECT_LT(std::fabs(a.final), 0.5);  // Overlapping at the end.
+}
+
+TEST(BulletStepperTest, UnjoinedRuleFiltersOutTheCellsOfASpring) {
+  // The two cells are joined by the spring: under UNJOINED Bullet makes no
+  // contact for them, exactly as without contacts.
+  const Approach none = RunApproach(ContactRule::kNone, 6.0);
+  const Approach unjoined = RunApproach(ContactRule::kUnjoined, 6.0);
+  EXPECT_EQ(unjoined.closest, none.closest);
+  EXPECT_EQ(unjoined.final, none.final);
+}
+
+TEST(BulletStepperTest, UnjoinedRuleKeepsContactsOfUnjoinedCells) {
+  // Three cells in a row, the outer two joined by a spring through the
+  // middle one, which is joined to neither: the spring drives the outer
+  // cells together and the middle cell stops them under UNJOINED.
+  Body body;
+  body.position = {{0, 0}, {3, 0}, {6, 0}};
+  body.radius = {1.0, 1.0, 1.0};
+  body.springs.push_back({0, 2, 0.01});
+  for (const ContactRule rule : {ContactRule::kNone, ContactRule::kUnjoined}) {
+    PhysicsParams params = BulletParams();
+    params.contact_rule = rule;
+    SoftBody forces(body, params);
+    std::unique_ptr<MotionStepper> bullet = MakeBulletStepper(&forces, body);
+    MotionState state = AtRest(body);
+    for (int step = 0; step < 600; ++step) bullet->Step(&state);
+    const double span = state.position[2].x - state.position[0].x;
+    if (rule == ContactRule::kNone) {
+      EXPECT_LT(span, 1.0) << "without contacts the ends meet";
+    } else {
+      EXPECT_GT(span, 0.9 * 4.0) << "the middle cell holds them apart";
+    }
+  }
 }
 
 TEST(BulletStepperTest, ContactsAreInternalForcesWithoutDrag) {
@@ -240,7 +276,8 @@ TEST(BulletStepperTest, ContactsAreInternalForcesWithoutDrag) {
     const Body body = RandomBody(source, source.Int(3, 32), 6.0);
     const int n = body.nodes();
     PhysicsParams params = BulletParams();
-    params.contacts = true;
+    params.contact_rule =
+        trial % 2 == 0 ? ContactRule::kAll : ContactRule::kUnjoined;
     params.drag_normal = 0.0;
     params.drag_tangential = 0.0;
     params.actuation_max = 0.45;
@@ -271,28 +308,15 @@ TEST(BulletStepperTest, ContactsAreInternalForcesWithoutDrag) {
 TEST(BulletStepperTest, ConfigAcceptsBulletWithContacts) {
   v1::PhysicsConfig message;
   message.set_backend(v1::PhysicsConfig::BULLET);
-  message.set_contacts(true);
+  message.set_contact_rule(v1::PhysicsConfig::UNJOINED);
   message.set_integrator(v1::PhysicsConfig::SEMI_IMPLICIT_EULER);
   message.set_drag_update(v1::PhysicsConfig::EXPLICIT);
   message.set_substeps(4);
   PhysicsParams params;
   ASSERT_TRUE(PhysicsParamsFromProto(message, &params).ok());
   EXPECT_EQ(params.backend, PhysicsBackend::kBullet);
-  EXPECT_TRUE(params.contacts);
+  EXPECT_EQ(params.contact_rule, ContactRule::kUnjoined);
   EXPECT_EQ(params.substeps, 4);
-}
-
-TEST(BulletStepperTest, ConfigRejectsContactsWithTheNativeBackend) {
-  v1::PhysicsConfig message;
-  message.set_backend(v1::PhysicsConfig::NATIVE);
-  message.set_contacts(true);
-  PhysicsParams params;
-  const Status status = PhysicsParamsFromProto(message, &params);
-  ASSERT_FALSE(status.ok());
-  EXPECT_EQ(status.code(), StatusCode::kInvalidArgument);
-  EXPECT_EQ(status.message().rfind("physics.contacts: ", 0), 0u)
-      << status.message();
-  EXPECT_FALSE(params.contacts);  // Unchanged on error.
 }
 
 TEST(BulletStepperTest, ConfigRejectsOtherIntegratorsWithBullet) {
@@ -352,7 +376,7 @@ TEST(BulletStepperTest, ManySteppersComeAndGoWithoutLeaks) {
   const Body body = RandomBody(source, 32, 8.0);
   for (int round = 0; round < 200; ++round) {
     PhysicsParams params = BulletParams();
-    params.contacts = round % 2 == 1;
+    params.contact_rule = static_cast<ContactRule>(round % 3);
     SoftBody forces(body, params);
     std::unique_ptr<MotionStepper> bullet = MakeBulletStepper(&forces, body);
     MotionState state = AtRest(body);
@@ -371,6 +395,7 @@ TEST(BulletStepperTest, EvaluationWithBulletMatchesNative) {
   ModelConfig config;
   config.evaluation.motion_steps = 300;
   config.physics.integrator = Integrator::kSemiImplicitEuler;
+  config.physics.contact_rule = ContactRule::kNone;
   const EvaluationResult native = Evaluate(genome, config);
   config.physics.backend = PhysicsBackend::kBullet;
   const EvaluationResult bullet = Evaluate(genome, config);

@@ -1,5 +1,6 @@
-#include "common/development/contact_pairs.h"
+#include "common/geometry/contact_pairs.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 
@@ -24,6 +25,30 @@ bool InBounds(Vec2 x) {
 }  // namespace
 
 ContactPairs::ContactPairs(double skin) : skin_(skin) { assert(skin > 0); }
+
+void ContactPairs::Exclude(std::span<const IndexEdge> pairs) {
+  std::vector<IndexEdge> sorted;
+  sorted.reserve(pairs.size());
+  int cells = 0;
+  for (const IndexEdge& e : pairs) {
+    assert(e.a >= 0 && e.b >= 0);
+    if (e.a == e.b) continue;
+    sorted.push_back({std::min(e.a, e.b), std::max(e.a, e.b)});
+    cells = std::max(cells, sorted.back().b + 1);
+  }
+  std::sort(sorted.begin(), sorted.end());
+  sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+  excluded_.clear();
+  excluded_begin_.assign(sorted.empty() ? 0 : cells + 1, 0);
+  for (const IndexEdge& e : sorted) {
+    excluded_.push_back(e.b);
+    ++excluded_begin_[e.a + 1];
+  }
+  for (size_t i = 1; i < excluded_begin_.size(); ++i) {
+    excluded_begin_[i] += excluded_begin_[i - 1];
+  }
+  built_at_.clear();  // The next Update rebuilds the list.
+}
 
 void ContactPairs::Update(std::span<const Vec2> position,
                           std::span<const double> radius, double range) {
@@ -55,8 +80,20 @@ void ContactPairs::Build(std::span<const Vec2> position,
   partner_.clear();
   bool in_bounds = true;
   for (int i = 0; i < n; ++i) in_bounds &= InBounds(position[i]);
+  const int excluding = static_cast<int>(excluded_begin_.size()) - 1;
   for (int i = 0; i < n; ++i) {
+    // Cell i's excluded partners, increasing, walked alongside j.
+    const int* skip = nullptr;
+    const int* skip_end = nullptr;
+    if (i < excluding) {
+      skip = excluded_.data() + excluded_begin_[i];
+      skip_end = excluded_.data() + excluded_begin_[i + 1];
+    }
     for (int j = i + 1; j < n; ++j) {
+      if (skip != skip_end && *skip == j) {
+        ++skip;
+        continue;
+      }
       const Vec2 delta = position[j] - position[i];
       const double d2 = delta.x * delta.x + delta.y * delta.y;
       // Left out only when farther than the mechanics' own pre-filter

@@ -1,8 +1,8 @@
-// Tests of the mechanics' pair list (common/development/contact_pairs.h):
+// Tests of the mechanics' pair list (common/geometry/contact_pairs.h):
 // every pair it leaves out fails the mechanics' exact range test, whatever
 // the cells did since the list was built, and it is rebuilt only when it
 // must be.
-#include "common/development/contact_pairs.h"
+#include "common/geometry/contact_pairs.h"
 
 #include <gtest/gtest.h>
 

@@ -1,29 +1,32 @@
-// The cell pairs that development's mechanics must examine (docs/model.md
-// §4.3): a Verlet list, so that a sub-step looks at the pairs near each
-// other instead of all n(n-1)/2.
+// The cell pairs near enough to interact: a Verlet list, so that a force
+// evaluation looks at the pairs near each other instead of all n(n-1)/2.
+// Development's mechanics (docs/model.md §4.3) and the motion's contacts
+// (§7.10) use it.
 //
 // A pair interacts while d < range · (r_i + r_j). The list holds every
 // pair i < j within that reach plus a margin `skin` (radii) of where the
-// cells were when it was built, in increasing (i, j) order. It stays valid
-// while no cell has moved more than a fraction of the skin since then:
-// two cells that were farther apart than reach + skin cannot have come
-// within reach. Update() rebuilds it when a cell has moved that far, when
-// the cell count has changed, and whenever a coordinate is not finite or
-// beyond 2^20 radii (where the rounding of the distances is no longer far
-// below the margin). A pair left out therefore fails the mechanics' exact
+// cells were when it was built, in increasing (i, j) order, less the pairs
+// excluded once and for all (Exclude). It stays valid while no cell has
+// moved more than a fraction of the skin since then: two cells that were
+// farther apart than reach + skin cannot have come within reach. Update()
+// rebuilds it when a cell has moved that far, when the cell count has
+// changed, and whenever a coordinate is not finite or beyond 2^20 radii
+// (where the rounding of the distances is no longer far below the
+// margin). A pair left out (and not excluded) therefore fails the exact
 // test d < range · s: visiting only the listed pairs, in the same order,
 // gives the same forces bit for bit. Radii must not change between
 // rebuilds (development fixes a cell's radius at its birth).
 //
 // Lengths in cell radii. Owns its storage; not thread-safe (one per
-// development).
-#ifndef ANIMAT_COMMON_DEVELOPMENT_CONTACT_PAIRS_H_
-#define ANIMAT_COMMON_DEVELOPMENT_CONTACT_PAIRS_H_
+// simulation); copies are independent.
+#ifndef ANIMAT_COMMON_GEOMETRY_CONTACT_PAIRS_H_
+#define ANIMAT_COMMON_GEOMETRY_CONTACT_PAIRS_H_
 
 #include <span>
 #include <vector>
 
 #include "common/base/vec2.h"
+#include "common/geometry/gabriel.h"
 
 namespace animat {
 
@@ -31,6 +34,10 @@ class ContactPairs {
  public:
   // `skin` > 0: radii added to every pair's reach when the list is built.
   explicit ContactPairs(double skin);
+
+  // Pairs never to list (a, b in either order; any number of times),
+  // replacing those given before. Takes effect at the next Update.
+  void Exclude(std::span<const IndexEdge> pairs);
 
   // Makes the list valid for these positions and radii (one per cell, in
   // cell order) and the interaction range (> 0), rebuilding it if needed.
@@ -63,8 +70,12 @@ class ContactPairs {
   std::vector<Vec2> built_at_;  // Positions when the list was built.
   std::vector<int> begin_;      // Cell i's partners: [begin_[i], begin_[i+1]).
   std::vector<int> partner_;
+  // Cell i's excluded partners j > i, increasing, in
+  // [excluded_begin_[i], excluded_begin_[i+1]) (empty: none excluded).
+  std::vector<int> excluded_begin_;
+  std::vector<int> excluded_;
 };
 
 }  // namespace animat
 
-#endif  // ANIMAT_COMMON_DEVELOPMENT_CONTACT_PAIRS_H_
+#endif  // ANIMAT_COMMON_GEOMETRY_CONTACT_PAIRS_H_
