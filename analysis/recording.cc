@@ -19,6 +19,27 @@ Status FrameError(int index, const std::string& what) {
                                  "]: " + what);
 }
 
+// Each cell's radius: its body node's, 1 where the node has none or the
+// trace has no body nodes.
+Status ReadRadii(const v1::Body& body, Recording* r) {
+  const int nodes = body.nodes_size();
+  if (nodes != 0 && nodes != r->cells) {
+    return Status::InvalidArgument("trace body: " + std::to_string(nodes) +
+                                   " nodes, the frames have " +
+                                   std::to_string(r->cells) + " cells");
+  }
+  for (int i = 0; i < r->cells; ++i) {
+    const bool given = i < nodes && body.nodes(i).has_radius();
+    const double radius = given ? body.nodes(i).radius() : 1.0;
+    if (!(std::isfinite(radius) && radius > 0)) {
+      return Status::InvalidArgument("trace body: nodes[" + std::to_string(i) +
+                                     "].radius must be finite and > 0");
+    }
+    r->radius.push_back(radius);
+  }
+  return Status::Ok();
+}
+
 }  // namespace
 
 Result<Recording> RecordingFromTrace(const v1::Trace& trace) {
@@ -94,6 +115,8 @@ Result<Recording> RecordingFromTrace(const v1::Trace& trace) {
     r.springs.push_back({static_cast<int>(spring.a()),
                          static_cast<int>(spring.b()), spring.rest_length()});
   }
+  Status radii = ReadRadii(trace.body(), &r);
+  if (!radii.ok()) return radii;
   if (r.frames() < 2) {
     return Status::InvalidArgument("the trace has fewer than 2 motion frames");
   }

@@ -1,6 +1,6 @@
 // The motion phase of one evaluation, as the analysis reads it: positions
-// and actuation of every cell at evenly spaced steps, and the springs that
-// join the cells.
+// and actuation of every cell at evenly spaced steps, the cells' radii and
+// the springs that join the cells.
 //
 // Built from an animat.v1.Trace (docs/formats.md): only its MOTION frames
 // are used, those whose step is a multiple of the trace's spacing (a
@@ -35,6 +35,9 @@ struct Recording {
   std::vector<double> expand;    // e, in [0, 1].
   std::vector<double> contract;  // c, in [0, 1].
   std::vector<Spring> springs;   // The body's springs (may be empty).
+  // Per cell (radii), > 0: the body node's radius, 1 where the trace has
+  // none (body.proto's default; a trace without body nodes).
+  std::vector<double> radius;
 
   int frames() const { return static_cast<int>(steps.size()); }
   Vec2 at(int frame, int cell) const {
@@ -53,7 +56,8 @@ struct Recording {
 // The recording of `trace`'s motion phase. kInvalidArgument, saying why,
 // when the trace has fewer than 2 motion frames (a failed evaluation stops
 // before motion), frames of different sizes, missing actuation, unevenly
-// spaced frames or a value that is not finite.
+// spaced frames, a value that is not finite, a body with another number of
+// nodes than the frames' cells, or a radius that is not > 0.
 Result<Recording> RecordingFromTrace(const v1::Trace& trace);
 
 // The index of the first frame whose step is >= `step` (frames() if none).

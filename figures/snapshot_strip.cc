@@ -12,15 +12,21 @@ namespace {
 using analysis::Analysis;
 using analysis::Recording;
 
-constexpr double kPanel = 170;        // Pixels per snapshot, square.
-constexpr double kTop = 52;           // Heading and step labels.
-constexpr double kBottom = 44;        // Caption.
-constexpr double kCellRadius = 0.45;  // Radii, as drawn.
+constexpr double kPanel = 170;  // Pixels per snapshot, square.
+constexpr double kTop = 52;     // Heading and step labels.
+constexpr double kBottom = 44;  // Caption.
 
 const char* CellColour(double rate, double neutral) {
   if (rate > neutral) return "#d62728";   // Expanding.
   if (rate < -neutral) return "#1f77b4";  // Contracting.
   return "#2ca02c";                       // Neutral.
+}
+
+// The cell's radius (radii); 1, body.proto's default, where none is given.
+double CellRadius(const Recording& recording, int cell) {
+  return static_cast<size_t>(cell) < recording.radius.size()
+             ? recording.radius[cell]
+             : 1.0;
 }
 
 }  // namespace
@@ -95,10 +101,11 @@ Result<std::string> SnapshotStripSvg(const Recording& recording,
   for (int k : *frames) {
     for (int i = 0; i < recording.cells; ++i) {
       const Vec2 p = body(recording.at(k, i));
-      lo_x = std::min(lo_x, p.x - 1);
-      hi_x = std::max(hi_x, p.x + 1);
-      lo_y = std::min(lo_y, p.y - 1);
-      hi_y = std::max(hi_y, p.y + 1);
+      const double r = CellRadius(recording, i);
+      lo_x = std::min(lo_x, p.x - r);
+      hi_x = std::max(hi_x, p.x + r);
+      lo_y = std::min(lo_y, p.y - r);
+      hi_y = std::max(hi_y, p.y + r);
     }
   }
   const double extent = std::max(hi_x - lo_x, hi_y - lo_y);
@@ -131,17 +138,19 @@ Result<std::string> SnapshotStripSvg(const Recording& recording,
         {left + kPanel / 2, kTop - 8},
         "t = " + std::to_string(recording.steps[k] - recording.steps[first]),
         12, "middle");
-    for (const analysis::Spring& s : recording.springs) {
-      svg.Line(pixel(body(recording.at(k, s.a))),
-               pixel(body(recording.at(k, s.b))), "#888888", 1, "spring");
-    }
+    // Cells as discs of their radius; the springs over them.
     for (int i = 0; i < recording.cells; ++i) {
       const double rate =
           k > 0 ? (recording.actuation(k, i) - recording.actuation(k - 1, i)) /
                       recording.stride
                 : 0.0;
-      svg.Circle(pixel(body(recording.at(k, i))), kCellRadius * scale,
+      svg.Circle(pixel(body(recording.at(k, i))),
+                 CellRadius(recording, i) * scale,
                  CellColour(rate, options.neutral_rate), "black", "cell");
+    }
+    for (const analysis::Spring& s : recording.springs) {
+      svg.Line(pixel(body(recording.at(k, s.a))),
+               pixel(body(recording.at(k, s.b))), "#444444", 1, "spring");
     }
     // The centre of mass at the cycle's start (cross) and now (dot).
     const Vec2 start = pixel({0, 0});

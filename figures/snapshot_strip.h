@@ -6,7 +6,8 @@
 // cycle's start is the origin and the body's front axis at that moment
 // points right, so the body's drift shows from panel to panel and the
 // arrow in the last panel is the centre of mass's displacement over the
-// cycle, to scale. Cells are coloured as in the paper by what they do to
+// cycle, to scale. Cells are discs of their radius (Recording::radius), the
+// springs drawn over them, coloured as in the paper by what they do to
 // their springs at that moment: red while e − c rises (expanding), blue
 // while it falls (contracting), green while its rate is below the neutral
 // rate. In the SVG each snapshot is a <g class="snapshot"> holding one

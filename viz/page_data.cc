@@ -201,7 +201,20 @@ void AppendDt(const v1::Trace& trace, std::string* out) {
   AppendExact(physics.has_dt() ? physics.dt() : 0.05, out);
 }
 
-void AppendResult(const v1::EvaluationResult& result, std::string* out) {
+// "result":{...}; max_overlap (model v3) is exact, or null when absent.
+Status AppendResult(const v1::EvaluationResult& result, std::string* out) {
+  if (result.has_max_overlap()) {
+    const double overlap = result.max_overlap();
+    if (!std::isfinite(overlap)) {
+      return Status::InvalidArgument("result.max_overlap is not finite");
+    }
+    if (overlap < 0 || overlap > 1) {
+      std::string value;
+      AppendExact(overlap, &value);
+      return Status::InvalidArgument("result.max_overlap is " + value +
+                                     ", not in [0, 1]");
+    }
+  }
   out->append("\"result\":{\"status\":");
   AppendString(StatusName(result), out);
   out->append(",\"reason\":");
@@ -212,8 +225,33 @@ void AppendResult(const v1::EvaluationResult& result, std::string* out) {
   } else {
     out->append("null");
   }
-  out->append(",\"cells\":" + std::to_string(result.cells()) +
-              ",\"steps\":" + std::to_string(result.steps()) + "}");
+  out->append(",\"cells\":" + std::to_string(result.cells()) + ",\"steps\":" +
+              std::to_string(result.steps()) + ",\"max_overlap\":");
+  if (result.has_max_overlap()) {
+    AppendExact(result.max_overlap(), out);
+  } else {
+    out->append("null");
+  }
+  out->push_back('}');
+  return Status::Ok();
+}
+
+// "radii":[r0,r1,...], exact: each body node's radius, 1 where absent
+// (body.proto's default).
+Status AppendRadii(const v1::Body& body, std::string* out) {
+  out->append("\"radii\":[");
+  for (int i = 0; i < body.nodes_size(); ++i) {
+    const v1::Node& node = body.nodes(i);
+    const double radius = node.has_radius() ? node.radius() : 1.0;
+    if (!(std::isfinite(radius) && radius > 0)) {
+      return Status::InvalidArgument("body." + Where("nodes", i) +
+                                     ".radius must be finite and > 0");
+    }
+    if (i > 0) out->push_back(',');
+    AppendExact(radius, out);
+  }
+  out->push_back(']');
+  return Status::Ok();
 }
 
 // With guidance (docs/model.md §10.2): "guidance":{"trial":k,
@@ -273,7 +311,8 @@ Result<std::string> PageDataJson(const v1::Trace& trace,
   std::string out = "{\"format\":1,\"title\":";
   AppendString(options.title, &out);
   out.append(",");
-  AppendResult(trace.result(), &out);
+  Status status = AppendResult(trace.result(), &out);
+  if (!status.ok()) return status;
   out.append(",");
   AppendLengths(trace, &out);
   out.append(",");
@@ -281,8 +320,10 @@ Result<std::string> PageDataJson(const v1::Trace& trace,
   out.append(",\"neutral_rate\":");
   AppendExact(options.neutral_rate, &out);
   out.append(",");
-  Status status =
-      AppendEdges("springs", trace.body().springs(), body_nodes, &out);
+  status = AppendRadii(trace.body(), &out);
+  if (!status.ok()) return status;
+  out.append(",");
+  status = AppendEdges("springs", trace.body().springs(), body_nodes, &out);
   if (!status.ok()) return status;
   out.append(",");
   status = AppendEdges("skin", trace.body().skin(), body_nodes, &out);

@@ -89,6 +89,40 @@ TEST(RecordingTest, RejectsASpringToAMissingCell) {
   EXPECT_FALSE(RecordingFromTrace(trace).ok());
 }
 
+// Each cell's radius is its body node's, 1 where the node has none.
+TEST(RecordingTest, RadiiAreTheBodysOrOne) {
+  testing::SyntheticSwimmer swimmer;
+  swimmer.steps = 20;
+  v1::Trace trace = swimmer.Trace();
+  trace.mutable_body()->mutable_nodes(3)->set_radius(1.375);
+  Result<Recording> r = RecordingFromTrace(trace);
+  ASSERT_TRUE(r.ok()) << r.status().ToString();
+  EXPECT_EQ(r->radius, (std::vector<double>{1, 1, 1, 1.375, 1, 1, 1, 1}));
+
+  trace.mutable_body()->clear_nodes();
+  r = RecordingFromTrace(trace);
+  ASSERT_TRUE(r.ok()) << r.status().ToString();
+  EXPECT_EQ(r->radius, std::vector<double>(8, 1.0));
+}
+
+TEST(RecordingTest, RejectsABodyThatDisagreesWithTheFrames) {
+  testing::SyntheticSwimmer swimmer;
+  swimmer.steps = 20;
+  v1::Trace trace = swimmer.Trace();
+  trace.mutable_body()->mutable_nodes(5)->set_radius(0);
+  Result<Recording> r = RecordingFromTrace(trace);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().message(),
+            "trace body: nodes[5].radius must be finite and > 0");
+
+  trace = swimmer.Trace();
+  trace.mutable_body()->add_nodes();
+  r = RecordingFromTrace(trace);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().message(),
+            "trace body: 9 nodes, the frames have 8 cells");
+}
+
 TEST(RecordingTest, FrameAtOrAfterSnapsToRecordedSteps) {
   testing::SyntheticSwimmer swimmer;
   swimmer.steps = 100;

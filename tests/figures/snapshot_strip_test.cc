@@ -2,7 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdlib>
 #include <set>
+#include <string>
+#include <vector>
 
 #include "tests/analysis/synthetic_swimmer.h"
 #include "tests/svg/xml.h"
@@ -22,9 +26,9 @@ StripOptions Strip(int snapshots, std::optional<int64_t> start = {}) {
   return options;
 }
 
-Swim Analyse(const testing::SyntheticSwimmer& swimmer) {
+Swim AnalyseTrace(const v1::Trace& trace) {
   Swim s;
-  Result<analysis::Recording> r = analysis::RecordingFromTrace(swimmer.Trace());
+  Result<analysis::Recording> r = analysis::RecordingFromTrace(trace);
   EXPECT_TRUE(r.ok()) << r.status().ToString();
   if (!r.ok()) return s;
   s.recording = std::move(r).value();
@@ -32,6 +36,14 @@ Swim Analyse(const testing::SyntheticSwimmer& swimmer) {
   EXPECT_TRUE(a.ok()) << a.status().ToString();
   if (a.ok()) s.analysis = std::move(a).value();
   return s;
+}
+
+Swim Analyse(const testing::SyntheticSwimmer& swimmer) {
+  return AnalyseTrace(swimmer.Trace());
+}
+
+double Number(const testing::XmlElement* element, const std::string& key) {
+  return std::atof(element->Attribute(key).c_str());
 }
 
 TEST(SnapshotStripTest, ShowsOneCycleInEvenSteps) {
@@ -88,6 +100,53 @@ TEST(SnapshotStripTest, ColoursCellsByWhatTheyDoToTheirSprings) {
   EXPECT_EQ(colours(0), std::set<std::string>{"#2ca02c"});  // Neutral.
   EXPECT_EQ(colours(1), std::set<std::string>{"#1f77b4"});  // Contracting.
   EXPECT_EQ(colours(4), std::set<std::string>{"#d62728"});  // Expanding.
+}
+
+// Cells are discs of their own radius, all at the strip's one scale, and
+// fit in their panels.
+TEST(SnapshotStripTest, DrawsCellsAsDiscsOfTheirRadius) {
+  testing::SyntheticSwimmer swimmer;
+  v1::Trace trace = swimmer.Trace();
+  std::vector<double> radii;
+  for (int i = 0; i < swimmer.cells(); ++i) {
+    radii.push_back(0.6 + 0.15 * i);  // 0.6 to 1.65 radii.
+    trace.mutable_body()->mutable_nodes(i)->set_radius(radii.back());
+  }
+  const Swim s = AnalyseTrace(trace);
+  Result<std::string> svg = SnapshotStripSvg(s.recording, s.analysis, Strip(6));
+  ASSERT_TRUE(svg.ok()) << svg.status().ToString();
+  testing::XmlReader reader;
+  std::optional<testing::XmlElement> root = reader.Parse(*svg);
+  ASSERT_TRUE(root.has_value()) << reader.error();
+  const auto snapshots = root->FindAll("g", "snapshot");
+  ASSERT_EQ(snapshots.size(), 6u);
+  for (const testing::XmlElement* snapshot : snapshots) {
+    SCOPED_TRACE(snapshot->Attribute("data-step"));
+    const auto cells = snapshot->FindAll("circle", "cell");
+    ASSERT_EQ(cells.size(), 8u);
+    // The scale: pixels between cells 0 and 7 over radii between them
+    // (frame k is motion step k).
+    const int k = std::atoi(snapshot->Attribute("data-step").c_str());
+    const double world = Length(s.recording.at(k, 7) - s.recording.at(k, 0));
+    const double pixels =
+        std::hypot(Number(cells[7], "cx") - Number(cells[0], "cx"),
+                   Number(cells[7], "cy") - Number(cells[0], "cy"));
+    const double scale = pixels / world;
+    const auto panels = snapshot->FindAll("rect");
+    ASSERT_EQ(panels.size(), 1u);
+    const double left = Number(panels[0], "x");
+    const double top = Number(panels[0], "y");
+    for (int i = 0; i < 8; ++i) {
+      const double r = Number(cells[i], "r");
+      EXPECT_NEAR(r, radii[i] * scale, 0.02) << "cell " << i;
+      EXPECT_GE(Number(cells[i], "cx") - r, left) << "cell " << i;
+      EXPECT_LE(Number(cells[i], "cx") + r, left + Number(panels[0], "width"))
+          << "cell " << i;
+      EXPECT_GE(Number(cells[i], "cy") - r, top) << "cell " << i;
+      EXPECT_LE(Number(cells[i], "cy") + r, top + Number(panels[0], "height"))
+          << "cell " << i;
+    }
+  }
 }
 
 TEST(SnapshotStripTest, NeedsAPeriodAndACycleThatFits) {

@@ -17,6 +17,7 @@
 #include "animat/v1/trace.pb.h"
 #include "common/io/proto_file.h"
 #include "tests/test_util.h"
+#include "tests/viz/trace_builder.h"
 #include "viz/actuation.h"
 
 namespace animat {
@@ -66,7 +67,12 @@ std::optional<std::string> FindChromium() {
 struct Shown {
   std::string frame, phase, step, text;  // #step's data attributes, text.
   std::string playing;                   // body's data-playing.
-  std::vector<std::string> cells;        // Class of each circle of #cells.
+  // Each circle of #cells: its colour class, its radius (text), and the
+  // indices of those also of class "overlap".
+  std::vector<std::string> cells;
+  std::vector<std::string> radii;
+  std::vector<int> overlapping;
+  std::string drawn;  // The picture's data-cells: "discs" or "dots".
 };
 
 // The value of attribute `name` in the start tag `tag`, or "".
@@ -95,11 +101,20 @@ Shown Read(const std::string& dom) {
   const size_t text = dom.find(step) + step.size();
   shown.text = dom.substr(text, dom.find("</output>", text) - text);
   shown.playing = Attribute(StartTag(dom, "<body"), "data-playing");
+  shown.drawn = Attribute(StartTag(dom, "<svg id=\"view\""), "data-cells");
   const size_t cells = dom.find("<g id=\"cells\">");
   const size_t end = dom.find("</g>", cells);
   for (size_t at = dom.find("<circle", cells); at < end;
        at = dom.find("<circle", at + 1)) {
-    shown.cells.push_back(Attribute(StartTag(dom, "<circle", at), "class"));
+    const std::string tag = StartTag(dom, "<circle", at);
+    std::string classes = Attribute(tag, "class");
+    const std::string overlap = " overlap";
+    if (classes.size() > overlap.size() && classes.ends_with(overlap)) {
+      shown.overlapping.push_back(static_cast<int>(shown.cells.size()));
+      classes.resize(classes.size() - overlap.size());
+    }
+    shown.cells.push_back(classes);
+    shown.radii.push_back(Attribute(tag, "r"));
   }
   return shown;
 }
@@ -390,6 +405,128 @@ TEST_F(BrowserTest, GuidanceShowsTheSourcesAndTheGradient) {
             (std::vector<std::string>{"", "", "", "active"}));
   EXPECT_EQ(circles("gradient").size(), 3u);
   EXPECT_NE(dom.find("trial 3 (0 to 3)"), std::string::npos);
+}
+
+// Body nodes are discs of their radius; "discs" unticked (here by the
+// fragment's &dots, which clicks it) brings back equal dots, smaller than
+// any cell. Development snapshots are discs of their radius either way.
+// (Radii that differ from cell to cell: the folding ring's test below.)
+TEST_F(BrowserTest, CellsAreDiscsOfTheirRadiusAndTheToggleBringsBackDots) {
+  const std::string last = std::to_string(Frames() - 1);
+  const Shown discs = Open("frame=" + last, 500);
+  EXPECT_EQ(discs.drawn, "discs");
+  const int nodes = trace_.body().nodes_size();
+  ASSERT_EQ(discs.radii.size(), static_cast<size_t>(nodes));
+  double smallest = 1e9;
+  for (int i = 0; i < nodes; ++i) {
+    ASSERT_TRUE(trace_.body().nodes(i).has_radius()) << i;
+    const double radius = trace_.body().nodes(i).radius();
+    EXPECT_EQ(std::atof(discs.radii[i].c_str()), radius) << "node " << i;
+    smallest = std::min(smallest, radius);
+  }
+
+  const Shown dots = Open("frame=" + last + "&dots", 500);
+  EXPECT_EQ(dots.drawn, "dots");
+  ASSERT_EQ(dots.radii.size(), static_cast<size_t>(nodes));
+  for (int i = 0; i < nodes; ++i) {
+    EXPECT_EQ(dots.radii[i], dots.radii[0]) << "node " << i;
+  }
+  EXPECT_GT(std::atof(dots.radii[0].c_str()), 0);
+  EXPECT_LT(std::atof(dots.radii[0].c_str()), smallest);
+  EXPECT_EQ(dots.cells, discs.cells);
+
+  const Shown grown = Open("frame=5", 500);
+  const Shown grown_dots = Open("frame=5&dots", 500);
+  ASSERT_EQ(grown.radii.size(),
+            static_cast<size_t>(trace_.development(5).radius_size()));
+  for (int i = 0; i < trace_.development(5).radius_size(); ++i) {
+    EXPECT_NEAR(std::atof(grown.radii[i].c_str()),
+                trace_.development(5).radius(i), 5e-5);
+  }
+  EXPECT_EQ(grown_dots.radii, grown.radii);
+}
+
+// The hand-made folding ring (tests/viz/trace_builder.h): joined nodes 0
+// and 1 overlap by 20% in every frame and are never marked; unjoined nodes
+// 0 and 2 overlap by 7.3% in the folded frame, and are marked there only,
+// with discs or dots. The heading gives the run's recorded deepest overlap,
+// or says a trace from before it has none.
+TEST_F(BrowserTest, OverlappingUnjoinedCellsAreMarkedJoinedOnesAreNot) {
+  const std::string animat = std::string(ANIMAT_BIN_DIR) + "/animat";
+  const std::string trace = (dir_ / "folding.binpb").string();
+  auto render = [&](const v1::Trace& made) {
+    ASSERT_TRUE(WriteProtoFile(trace, made).ok());
+    const Outcome rendered =
+        Shell(animat + " render --trace " + trace + " -o " + page_ + " 2>&1");
+    ASSERT_EQ(rendered.exit_code, 0) << rendered.output;
+  };
+  ASSERT_NO_FATAL_FAILURE(render(testing::FoldingTrace()));
+  struct Marks {
+    Shown shown;
+    std::string lines;  // data-cells of each line of #overlaps, joined.
+    std::string overlap, overlap_cells, overlap_text;  // #overlap.
+    std::string run, run_text;                         // #max-overlap.
+  };
+  auto open = [&](const std::string& fragment) {
+    const Outcome run =
+        Shell(Chromium("--window-size=1000,700 --dump-dom", fragment, 500));
+    EXPECT_EQ(run.exit_code, 0);
+    const std::string& dom = run.output;
+    Marks marks;
+    marks.shown = Read(dom);
+    const size_t begin = dom.find("<g id=\"overlaps\">");
+    EXPECT_NE(begin, std::string::npos);
+    const size_t end = dom.find("</g>", begin);
+    for (size_t at = dom.find("<line", begin); at < end;
+         at = dom.find("<line", at + 1)) {
+      marks.lines.push_back('[');
+      marks.lines += Attribute(StartTag(dom, "<line", at), "data-cells");
+      marks.lines.push_back(']');
+    }
+    const std::string overlap = StartTag(dom, "<span id=\"overlap\"");
+    marks.overlap = Attribute(overlap, "data-overlap");
+    marks.overlap_cells = Attribute(overlap, "data-cells");
+    marks.overlap_text = TextAfter(dom, "<span id=\"overlap\"");
+    marks.run =
+        Attribute(StartTag(dom, "<span id=\"max-overlap\""), "data-overlap");
+    marks.run_text = TextAfter(dom, "<span id=\"max-overlap\"");
+    return marks;
+  };
+
+  const Marks open_ring = open("frame=1");
+  EXPECT_EQ(open_ring.shown.phase, "motion");
+  EXPECT_EQ(open_ring.shown.step, "0");
+  EXPECT_EQ(open_ring.shown.radii,
+            (std::vector<std::string>{"1", "0.5", "1", "0.5"}));
+  EXPECT_EQ(open_ring.shown.overlapping, std::vector<int>{});
+  EXPECT_EQ(open_ring.lines, "");
+  EXPECT_EQ(open_ring.overlap, "0");
+  EXPECT_EQ(open_ring.overlap_text, "no unjoined overlap");
+  EXPECT_EQ(open_ring.run, "0.083");
+  EXPECT_EQ(open_ring.run_text, "deepest unjoined overlap: 8.3%");
+
+  for (const std::string fragment : {"frame=2", "frame=2&dots"}) {
+    SCOPED_TRACE(fragment);
+    const Marks folded = open(fragment);
+    EXPECT_EQ(folded.shown.step, "10");
+    EXPECT_EQ(folded.shown.drawn,
+              fragment.ends_with("dots") ? "dots" : "discs");
+    EXPECT_EQ(folded.shown.overlapping, (std::vector<int>{0, 2}));
+    EXPECT_EQ(folded.shown.cells, std::vector<std::string>(4, "neutral"));
+    EXPECT_EQ(folded.lines, "[0,2]");
+    EXPECT_EQ(folded.overlap, "0.073");
+    EXPECT_EQ(folded.overlap_cells, "0,2");
+    EXPECT_EQ(folded.overlap_text, "unjoined overlap 7.3% (cells 0 and 2)");
+    EXPECT_EQ(folded.run_text, "deepest unjoined overlap: 8.3%");
+  }
+
+  v1::Trace older = testing::FoldingTrace();
+  older.mutable_result()->clear_max_overlap();
+  ASSERT_NO_FATAL_FAILURE(render(older));
+  const Marks unrecorded = open("frame=2");
+  EXPECT_EQ(unrecorded.run, "");
+  EXPECT_EQ(unrecorded.run_text, "deepest unjoined overlap: not recorded");
+  EXPECT_EQ(unrecorded.overlap_text, "unjoined overlap 7.3% (cells 0 and 2)");
 }
 
 }  // namespace

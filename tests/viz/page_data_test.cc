@@ -120,6 +120,35 @@ TEST(PageDataTest, ResultAndPhaseLengthsComeFromTheTrace) {
   EXPECT_EQ(Field(lengths, "motion").number_value(), 20);
 }
 
+// The body's radii, for the page's discs: exact, 1 where a node has none.
+TEST(PageDataTest, RadiiAreTheBodysOnePerNode) {
+  v1::Trace trace = testing::TriangleTrace();
+  trace.mutable_body()->mutable_nodes(1)->set_radius(1.23456789);
+  const Struct data = Data(trace);
+  const auto& radii = Field(data, "radii").list_value().values();
+  ASSERT_EQ(radii.size(), 3);
+  EXPECT_EQ(radii[0].number_value(), 1);
+  EXPECT_EQ(radii[1].number_value(), 1.23456789);
+  EXPECT_EQ(radii[2].number_value(), 1);
+  // Without a body (development only) there are none.
+  trace.clear_body();
+  trace.clear_frames();
+  EXPECT_EQ(Field(Data(trace), "radii").list_value().values_size(), 0);
+}
+
+// The deepest unjoined overlap of the run (model v3): exact, null in a
+// trace made before it.
+TEST(PageDataTest, TheDeepestOverlapIsTheResultsOrNull) {
+  const Struct folding = Data(testing::FoldingTrace());
+  EXPECT_EQ(Field(Field(folding, "result").struct_value(), "max_overlap")
+                .number_value(),
+            0.083);
+  const Struct older = Data(testing::TriangleTrace());
+  EXPECT_EQ(
+      Field(Field(older, "result").struct_value(), "max_overlap").kind_case(),
+      Value::kNullValue);
+}
+
 // The model time per equilibration and motion step: the configuration's
 // physics.dt, else its default.
 TEST(PageDataTest, TheTimeStepIsTheConfigurationsOrTheDefault) {
@@ -284,6 +313,28 @@ TEST(PageDataTest, InconsistentTracesAreRejectedSayingWhere) {
   trace = testing::TriangleTrace();
   trace.mutable_body()->mutable_springs(1)->set_b(3);
   EXPECT_EQ(Error(trace), "body.springs[1]: nodes 0 and 3, the body has 3");
+
+  trace = testing::TriangleTrace();
+  trace.mutable_body()->mutable_nodes(2)->set_radius(0);
+  EXPECT_EQ(Error(trace), "body.nodes[2].radius must be finite and > 0");
+  {
+    testing::FpTrapsOff traps_off;
+    trace.mutable_body()->mutable_nodes(2)->set_radius(
+        std::numeric_limits<double>::quiet_NaN());
+    EXPECT_EQ(Error(trace), "body.nodes[2].radius must be finite and > 0");
+  }
+
+  trace = testing::FoldingTrace();
+  trace.mutable_result()->set_max_overlap(1.5);
+  EXPECT_EQ(Error(trace), "result.max_overlap is 1.5, not in [0, 1]");
+  trace.mutable_result()->set_max_overlap(-0.25);
+  EXPECT_EQ(Error(trace), "result.max_overlap is -0.25, not in [0, 1]");
+  {
+    testing::FpTrapsOff traps_off;
+    trace.mutable_result()->set_max_overlap(
+        std::numeric_limits<double>::infinity());
+    EXPECT_EQ(Error(trace), "result.max_overlap is not finite");
+  }
 
   PageOptions negative;
   negative.neutral_rate = -1;

@@ -74,6 +74,60 @@ inline v1::Trace TriangleTrace() {
   return trace;
 }
 
+// Four nodes in a ring joined by springs 0-1, 1-2, 2-3 and 3-0 (no
+// diagonal; all skin), radii 1, 0.5, 1 and 0.5, no development, and frames
+// at equilibration step 0 and motion steps 0 and 10. Joined nodes 0 and 1
+// are 1.2 apart in every frame: their discs overlap by (1.5 - 1.2) / 1.5 =
+// 20%. The unjoined pairs (0, 2) and (1, 3) do not overlap until motion
+// step 10, where the ring folds and nodes 0 and 2 come 1.854 apart: an
+// overlap of (2 - 1.854) / 2 = 7.3%. The result records a deepest unjoined
+// overlap of 8.3% (max_overlap 0.083, as a v3 build would).
+inline v1::Trace FoldingTrace() {
+  v1::Trace trace;
+  trace.mutable_config()->mutable_development()->set_steps(10);
+  trace.mutable_config()->mutable_evaluation()->set_equilibration_steps(0);
+  trace.mutable_config()->mutable_evaluation()->set_motion_steps(10);
+  const double radii[] = {1, 0.5, 1, 0.5};
+  const double open_x[] = {0, 1.2, 1.2, 0}, open_y[] = {0, 0, 2, 1.6};
+  const double folded_x[] = {0, 1.2, 0, -1.2}, folded_y[] = {0, 0, 1.854, 0.9};
+  for (int i = 0; i < 4; ++i) {
+    v1::Node* node = trace.mutable_body()->add_nodes();
+    node->set_x(open_x[i]);
+    node->set_y(open_y[i]);
+    node->set_radius(radii[i]);
+    v1::Spring* spring = trace.mutable_body()->add_springs();
+    spring->set_a(i);
+    spring->set_b((i + 1) % 4);
+    v1::Edge* skin = trace.mutable_body()->add_skin();
+    skin->set_a(i);
+    skin->set_b((i + 1) % 4);
+  }
+  struct Shown {
+    v1::MotionFrame::Phase phase;
+    int step;
+    const double* x;
+    const double* y;
+  };
+  for (const Shown& shown :
+       {Shown{v1::MotionFrame::EQUILIBRATION, 0, open_x, open_y},
+        Shown{v1::MotionFrame::MOTION, 0, open_x, open_y},
+        Shown{v1::MotionFrame::MOTION, 10, folded_x, folded_y}}) {
+    v1::MotionFrame* frame = trace.add_frames();
+    frame->set_phase(shown.phase);
+    frame->set_step(shown.step);
+    for (int i = 0; i < 4; ++i) {
+      frame->add_x(shown.x[i]);
+      frame->add_y(shown.y[i]);
+    }
+  }
+  trace.mutable_result()->set_status(v1::EvaluationResult::OK);
+  trace.mutable_result()->set_fitness(0.5);
+  trace.mutable_result()->set_cells(4);
+  trace.mutable_result()->set_steps(10);
+  trace.mutable_result()->set_max_overlap(0.083);
+  return trace;
+}
+
 }  // namespace animat::testing
 
 #endif  // ANIMAT_TESTS_VIZ_TRACE_BUILDER_H_
