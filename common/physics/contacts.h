@@ -43,8 +43,7 @@ class Contacts {
 
   // Adds the contact forces at positions x and velocities v (one per
   // cell) to `force`.
-  void AddForces(std::span<const Vec2> x, std::span<const Vec2> v,
-                 Vec2* force);
+  void AddForces(std::span<const Vec2> x, std::span<const Vec2> v, Vec2* force);
 
   // The deepest overlap of two cells not joined by a spring at positions
   // x: the largest δ / (r_i + r_j), in (0, 1], or 0 when no such pair

@@ -290,6 +290,26 @@ TEST(EvaluatorTest, ObservingDoesNotChangeTheResult) {
   EXPECT_EQ(plain.fitness, observed.fitness);
 }
 
+// The best of a model v2 run (docs/results.md, dn1-seed3) that folds
+// through itself: without contacts cell 8 comes to lie on cell 11; with the
+// default contacts no two unjoined cells overlap by more than 10% of r_i +
+// r_j (model §7.10, §8.6).
+TEST(EvaluatorTest, ContactsKeepAFoldingBodyFromPassingThroughItself) {
+  const Genome genome = LoadGenome("folding-dn1-seed3.json");
+  ModelConfig config;
+  const EvaluationResult contacts = Evaluate(genome, config);
+  config.physics.contact_rule = ContactRule::kNone;
+  const EvaluationResult none = Evaluate(genome, config);
+  ASSERT_EQ(contacts.status, EvalStatus::kOk) << contacts.reason;
+  ASSERT_EQ(none.status, EvalStatus::kOk) << none.reason;
+  ASSERT_TRUE(contacts.max_overlap && none.max_overlap);
+  EXPECT_GT(*none.max_overlap, 0.9);
+  EXPECT_LE(*contacts.max_overlap, 0.10);
+  EXPECT_GT(*contacts.max_overlap, 0.0);  // They do touch.
+  // Folding was worth distance: contacts cost this swimmer some.
+  EXPECT_LT(*contacts.fitness, *none.fitness);
+}
+
 TEST(EvaluatorTest, RandomGenomesNeverCrashAndAlwaysGiveAStatus) {
   // Development only needs a few steps to hit every early status.
   ModelConfig config;
@@ -299,6 +319,11 @@ TEST(EvaluatorTest, RandomGenomesNeverCrashAndAlwaysGiveAStatus) {
     RandomStream stream(99, individual, StreamPurpose::kRandomGenome);
     const EvaluationResult r = Evaluate(RandomGenome(stream), config);
     EXPECT_EQ(r.fitness.has_value(), r.status == EvalStatus::kOk);
+    EXPECT_EQ(r.max_overlap.has_value(), r.status == EvalStatus::kOk);
+    if (r.max_overlap) {
+      EXPECT_GE(*r.max_overlap, 0.0);
+      EXPECT_LE(*r.max_overlap, 1.0);
+    }
     EXPECT_EQ(r.reason.empty(), r.status == EvalStatus::kOk);
     if (r.fitness) {
       EXPECT_TRUE(std::isfinite(*r.fitness));

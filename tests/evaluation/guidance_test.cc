@@ -248,6 +248,7 @@ TEST(GuidanceTest, ThreadCountDoesNotChangeTheBits) {
     EXPECT_EQ(std::bit_cast<uint64_t>(*many.energy),
               std::bit_cast<uint64_t>(*one.energy));
     EXPECT_EQ(many.source_distances, one.source_distances);
+    EXPECT_EQ(many.max_overlap, one.max_overlap);
     EXPECT_EQ(many.state_hash, one.state_hash);
     EXPECT_EQ(many.steps, one.steps);
   }

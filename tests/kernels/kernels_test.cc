@@ -278,8 +278,8 @@ TEST(KernelsTest, PairKernelsGiveTheBaselinesBitsOnEveryPath) {
 // under the default configuration, in both precisions.
 std::vector<Genome> EvaluationGenomes() {
   std::vector<Genome> genomes;
-  for (const char* name :
-       {"seed-1198.json", "seed-139.json", "seed-1203.json", "example.json"}) {
+  for (const char* name : {"seed-1198.json", "seed-139.json", "seed-1203.json",
+                           "example.json", "folding-dn1-seed3.json"}) {
     v1::Genome message;
     if (!ReadProtoFile(testing::TestData(std::string("genomes/") + name),
                        &message)
@@ -314,6 +314,11 @@ TEST(KernelsTest, EvaluationsGiveTheSameBitsOnEveryPath) {
         ASSERT_EQ(wide.fitness.has_value(), base.fitness.has_value());
         if (base.fitness) {
           EXPECT_EQ(Bits(*wide.fitness), Bits(*base.fitness)) << IsaName(isa);
+        }
+        ASSERT_EQ(wide.max_overlap.has_value(), base.max_overlap.has_value());
+        if (base.max_overlap) {
+          EXPECT_EQ(Bits(*wide.max_overlap), Bits(*base.max_overlap))
+              << IsaName(isa);
         }
       }
     }

@@ -71,8 +71,7 @@ std::vector<Vec2> ReferenceForces(const Body& body, const PhysicsParams& p,
       if (!(delta > 0.0)) continue;
       const Vec2 u = l > 0.0 ? d / l : Vec2{};
       const double w = -Dot(state.velocity[j] - state.velocity[i], u);
-      const double f =
-          p.contact_stiffness * delta + p.contact_damping * w;
+      const double f = p.contact_stiffness * delta + p.contact_damping * w;
       if (!(f > 0.0)) continue;
       force[j] += u * f;
       force[i] -= u * f;
@@ -216,8 +215,8 @@ struct Squeeze {
 };
 
 Squeeze SqueezeRow(const PhysicsParams& params, int steps) {
-  const Body body = Cells({{0, 0}, {1.6, 0}, {3.2, 0}}, {1.0, 1.0, 1.0},
-                          {{0, 1}, {1, 2}});
+  const Body body =
+      Cells({{0, 0}, {1.6, 0}, {3.2, 0}}, {1.0, 1.0, 1.0}, {{0, 1}, {1, 2}});
   SoftBody soft(body, params);
   soft.SetActuation(std::vector<double>(3, 0.0), std::vector<double>(3, 1.0));
   MotionState state = AtRest(body);
