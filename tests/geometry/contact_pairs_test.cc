@@ -70,6 +70,37 @@ TEST(ContactPairsTest, ListsNearPairsInOrderAndLeavesOutFarOnes) {
   EXPECT_EQ(pairs.builds(), 1);
 }
 
+TEST(ContactPairsTest, ExcludedPairsAreNeverListedAndTheOthersAre) {
+  // Five unit cells close together: every pair within reach.
+  const std::vector<Vec2> x = {
+      {0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}, {1.0, 1.0}, {0.5, 0.5}};
+  const std::vector<double> r(5, 1.0);
+  ContactPairs pairs(kSkin);
+  // Either order, repeated, and a pair of a cell with itself (ignored).
+  const std::vector<IndexEdge> excluded = {
+      {3, 1}, {0, 4}, {1, 3}, {2, 2}, {0, 1}};
+  pairs.Exclude(excluded);
+  pairs.Update(x, r, kRange);
+  for (int i = 0; i < 5; ++i) {
+    for (int j = i + 1; j < 5; ++j) {
+      const bool skip =
+          (i == 0 && j == 1) || (i == 0 && j == 4) || (i == 1 && j == 3);
+      EXPECT_EQ(Listed(pairs, i, j), !skip) << i << ", " << j;
+    }
+  }
+  // A new exclusion rebuilds the list at the next Update, at the same
+  // positions.
+  pairs.Exclude(std::vector<IndexEdge>{{2, 4}});
+  pairs.Update(x, r, kRange);
+  EXPECT_EQ(pairs.builds(), 2);
+  EXPECT_TRUE(Listed(pairs, 0, 1));
+  EXPECT_FALSE(Listed(pairs, 2, 4));
+  // Exclusions of cells beyond the last leave the others alone.
+  pairs.Exclude(std::vector<IndexEdge>{{7, 9}});
+  pairs.Update(x, r, kRange);
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(pairs.Partners(i).size(), 4u - i);
+}
+
 TEST(ContactPairsTest, SkinKeepsPairsJustBeyondTheRange) {
   // 2.4 + 0.4 apart: out of range now, within range plus skin.
   const std::vector<Vec2> x = {{0.0, 0.0}, {2.8, 0.0}};
