@@ -42,9 +42,13 @@ Body Cells(const std::vector<Vec2>& x, const std::vector<double>& r,
   return body;
 }
 
+// The rule given, k_c = 50 and gamma_c = 0.5 (the tests' numbers are worked
+// out for them), no drag.
 PhysicsParams Rule(ContactRule rule) {
   PhysicsParams params;
   params.contact_rule = rule;
+  params.contact_stiffness = 50.0;
+  params.contact_damping = 0.5;
   params.drag_normal = 0.0;
   params.drag_tangential = 0.0;
   return params;
