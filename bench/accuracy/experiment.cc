@@ -214,6 +214,7 @@ Result<Report> RunExperiment(const ExperimentOptions& options) {
       report.animats.push_back(animat.name);
       report.evolved.push_back(animat.evolved);
       report.reference_fitness.push_back(run.fitness);
+      report.reference_overlap.push_back(run.max_overlap);
       reference.push_back(std::move(run));
       kept.push_back(animat);
     }
@@ -331,6 +332,7 @@ Result<Report> RunExperiment(const ExperimentOptions& options) {
       row.status = EvalStatusName(run.status);
       row.reason = run.reason;
       row.fitness = run.fitness;
+      row.max_overlap = run.max_overlap;
       row.reference_fitness = reference[a].fitness;
       row.fitness_error = FitnessError(run, reference[a]);
       row.trajectory_error = TrajectoryError(run, reference[a]);

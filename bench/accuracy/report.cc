@@ -7,6 +7,7 @@
 
 #include "bench/accuracy/stats.h"
 #include "bench/accuracy/svg_plot.h"
+#include "common/physics/physics_params.h"
 
 namespace animat::accuracy {
 namespace {
@@ -116,14 +117,14 @@ std::string AccuracyCsv(const Report& report) {
       "candidate,integrator,substeps,drag_update,precision,backend,animat,"
       "kind,status,reason,fitness,reference_fitness,fitness_error,"
       "trajectory_error,ms_per_evaluation,cpu_ms_per_evaluation,state_hash,"
-      "deterministic\n";
+      "deterministic,max_overlap\n";
   for (const CandidateResult& c : report.candidates) {
     const Candidate& k = c.candidate;
     const std::string prefix =
         k.Label() + "," + k.integrator + "," + std::to_string(k.substeps) +
         "," + k.drag_update + "," + k.precision + "," + k.backend + ",";
     if (!Measured(c)) {
-      csv += prefix + ",,not_loaded," + CsvField(c.error) + ",,,,,,,,\n";
+      csv += prefix + ",,not_loaded," + CsvField(c.error) + ",,,,,,,,,\n";
       continue;
     }
     for (const AnimatResult& a : c.animats) {
@@ -135,7 +136,8 @@ std::string AccuracyCsv(const Report& report) {
              "," + CsvNumber(a.trajectory_error) + "," + Format("%.3f", a.ms) +
              "," + Format("%.3f", a.cpu_ms) + "," +
              (ok ? Hex(a.state_hash) : "") + "," +
-             (a.deterministic ? "true" : "false") + "\n";
+             (a.deterministic ? "true" : "false") + "," +
+             (ok ? CsvNumber(a.max_overlap) : "") + "\n";
     }
   }
   return csv;
@@ -177,6 +179,35 @@ std::string SummaryCsv(const Report& report) {
   return csv;
 }
 
+namespace {
+
+// The deepest unjoined overlap under the reference (docs/model.md §8.6):
+// what the contact stiffness is chosen by (§7.10).
+std::string OverlapSummary(const Report& report) {
+  if (report.reference_overlap.empty()) return "";
+  size_t worst = 0;
+  int over = 0;
+  for (size_t a = 0; a < report.reference_overlap.size(); ++a) {
+    if (report.reference_overlap[a] > report.reference_overlap[worst]) {
+      worst = a;
+    }
+    over += report.reference_overlap[a] > 0.10;
+  }
+  std::vector<double> sorted = report.reference_overlap;
+  std::sort(sorted.begin(), sorted.end());
+  const double p90 = sorted[static_cast<size_t>(0.9 * (sorted.size() - 1))];
+  const PhysicsParams defaults;
+  return std::string("Contacts: ") + ContactRuleName(defaults.contact_rule) +
+         ", k_c " + Format("%g", defaults.contact_stiffness) +
+         ". Deepest unjoined overlap under the reference: " +
+         Format("%.1f%%", 100 * report.reference_overlap[worst]) + " (" +
+         report.animats[worst] + "), 90th percentile " +
+         Format("%.1f%%", 100 * p90) + ", " + std::to_string(over) + " of " +
+         std::to_string(sorted.size()) + " animats above 10%.\n\n";
+}
+
+}  // namespace
+
 std::string SummaryMarkdown(const Report& report) {
   std::string md;
   md += "### Speed against error\n\n";
@@ -200,6 +231,7 @@ std::string SummaryMarkdown(const Report& report) {
     for (const std::string& e : report.excluded) md += " " + e + ";";
     md += "\n\n";
   }
+  md += OverlapSummary(report);
 
   md +=
       "| | candidate | fitness error median | p90 | trajectory error "

@@ -26,6 +26,7 @@ struct AnimatResult {
   uint64_t state_hash = 0;
   bool deterministic = true;  // Every repetition gave the same bits.
   bool evolved = false;       // An evolved animat, not a random genome.
+  double max_overlap = 0.0;   // Deepest unjoined overlap; when "ok".
 };
 
 struct CandidateResult {
@@ -104,6 +105,9 @@ struct Report {
   std::string machine;  // CPU, cores, load average.
   double reference_ms_median = 0.0;
   std::vector<double> reference_fitness;  // Per animat, in order.
+  // Per animat, in order: the deepest unjoined overlap under the reference
+  // (docs/model.md §8.6), which the contact stiffness is chosen by.
+  std::vector<double> reference_overlap;
   std::vector<CandidateResult> candidates;
   std::vector<ChaosResult> chaos;
   double total_seconds = 0.0;

@@ -73,6 +73,7 @@ Run RunEvaluation(const Genome& genome, const ModelConfig& config) {
   run.status = result.status;
   run.reason = std::move(result.reason);
   run.fitness = result.fitness.value_or(0.0);
+  run.max_overlap = result.max_overlap.value_or(0.0);
   run.state_hash = result.state_hash;
   return run;
 }

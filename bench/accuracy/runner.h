@@ -22,6 +22,9 @@ struct Run {
   EvalStatus status = EvalStatus::kOk;
   std::string reason;    // Why, when not ok.
   double fitness = 0.0;  // Meaningful only when ok().
+  // The deepest unjoined overlap (docs/model.md §8.6); meaningful only when
+  // ok().
+  double max_overlap = 0.0;
   uint64_t state_hash = 0;
   // Motion steps at which the centre of mass was recorded (0, 50, ...,
   // and the last), and its displacement from the start of motion then.
