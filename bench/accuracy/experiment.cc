@@ -98,30 +98,6 @@ int Counterpart(const std::vector<CandidateResult>& all, const Candidate& c) {
   return -1;
 }
 
-void Summarise(CandidateResult* result) {
-  std::vector<double> fitness, trajectory, ms_ok, ms_all, cpu_ok, cpu_all;
-  result->failures = 0;
-  for (const AnimatResult& a : result->animats) {
-    fitness.push_back(a.fitness_error);
-    trajectory.push_back(a.trajectory_error);
-    ms_all.push_back(a.ms);
-    cpu_all.push_back(a.cpu_ms);
-    if (a.status == "ok") {
-      ms_ok.push_back(a.ms);
-      cpu_ok.push_back(a.cpu_ms);
-    } else {
-      ++result->failures;
-    }
-  }
-  if (result->animats.empty()) return;
-  result->fitness_error_median = Median(fitness);
-  result->fitness_error_p90 = Percentile90(fitness);
-  result->trajectory_error_median = Median(trajectory);
-  result->trajectory_error_p90 = Percentile90(trajectory);
-  result->ms_median = Median(ms_ok.empty() ? ms_all : ms_ok);
-  result->cpu_ms_median = Median(cpu_ok.empty() ? cpu_all : cpu_ok);
-}
-
 // Each animat's configuration: `config` with the animat's model constants.
 Result<std::vector<ModelConfig>> PerAnimat(const ModelConfig& config,
                                            const std::vector<Animat>& animats) {
@@ -135,6 +111,53 @@ Result<std::vector<ModelConfig>> PerAnimat(const ModelConfig& config,
 }
 
 }  // namespace
+
+void Summarise(CandidateResult* result) {
+  std::vector<double> fitness, trajectory, ms_ok, ms_all, cpu_ok, cpu_all;
+  result->failures = 0;
+  for (const AnimatResult& a : result->animats) {
+    // Errors only against a converged reference; failures and times of
+    // every animat.
+    if (a.converged) {
+      fitness.push_back(a.fitness_error);
+      trajectory.push_back(a.trajectory_error);
+    }
+    ms_all.push_back(a.ms);
+    cpu_all.push_back(a.cpu_ms);
+    if (a.status == "ok") {
+      ms_ok.push_back(a.ms);
+      cpu_ok.push_back(a.cpu_ms);
+    } else {
+      ++result->failures;
+    }
+  }
+  if (result->animats.empty() || fitness.empty()) return;
+  result->fitness_error_median = Median(fitness);
+  result->fitness_error_p90 = Percentile90(fitness);
+  result->trajectory_error_median = Median(trajectory);
+  result->trajectory_error_p90 = Percentile90(trajectory);
+  result->ms_median = Median(ms_ok.empty() ? ms_all : ms_ok);
+  result->cpu_ms_median = Median(cpu_ok.empty() ? cpu_all : cpu_ok);
+}
+
+int OrderSwaps(const std::vector<Run>& runs, const std::vector<Run>& reference,
+               const std::vector<bool>& converged, int* pairs) {
+  int swaps = 0;
+  *pairs = 0;
+  for (size_t a = 0; a < runs.size(); ++a) {
+    for (size_t b = a + 1; b < runs.size(); ++b) {
+      if (!runs[a].ok() || !runs[b].ok()) continue;
+      if (!converged[a] || !converged[b]) continue;
+      ++*pairs;
+      const bool ref_less = reference[a].fitness < reference[b].fitness;
+      const bool ref_more = reference[a].fitness > reference[b].fitness;
+      const bool less = runs[a].fitness < runs[b].fitness;
+      const bool more = runs[a].fitness > runs[b].fitness;
+      if ((ref_less && more) || (ref_more && less)) ++swaps;
+    }
+  }
+  return swaps;
+}
 
 std::string RuleChoice(const std::vector<CandidateResult>& candidates) {
   double cheapest = kInfinity;
@@ -226,6 +249,26 @@ Result<Report> RunExperiment(const ExperimentOptions& options) {
   report.reference_ms_median = Median(reference_ms);
   say(std::string("reference: ") + std::to_string(animats.size()) +
       " animats, " + std::to_string(elapsed()) + " s");
+
+  // Has the reference converged? RK4 with twice its sub-steps.
+  {
+    Candidate check = ReferenceCandidate();
+    check.substeps *= 2;
+    Result<ModelConfig> check_config = CandidateConfig(check);
+    if (!check_config.ok()) {
+      return check_config.status().WithPrefix("convergence check");
+    }
+    for (size_t a = 0; a < animats.size(); ++a) {
+      Result<ModelConfig> config = ForAnimat(*check_config, animats[a]);
+      if (!config.ok()) return config.status();
+      const Run run = RunEvaluation(animats[a].genome, *config);
+      report.check_fitness.push_back(run.ok() ? run.fitness : kInfinity);
+      report.converged.push_back(run.ok() &&
+                                 std::abs(reference[a].fitness - run.fitness) <=
+                                     kConvergenceTolerance * run.fitness);
+    }
+    say(std::string("convergence check: ") + std::to_string(elapsed()) + " s");
+  }
 
   // Chaos: one ulp of dt.
   {
@@ -340,20 +383,12 @@ Result<Report> RunExperiment(const ExperimentOptions& options) {
       row.cpu_ms = Median(cpu_seconds[c][a]) * 1e3;
       row.state_hash = run.state_hash;
       row.deterministic = deterministic[c][a];
+      row.converged = report.converged[a];
       result.animats.push_back(std::move(row));
     }
     Summarise(&result);
-    for (size_t a = 0; a < animats.size(); ++a) {
-      for (size_t b = a + 1; b < animats.size(); ++b) {
-        if (!runs[c][a].ok() || !runs[c][b].ok()) continue;
-        ++result.order_pairs;
-        const bool ref_less = reference[a].fitness < reference[b].fitness;
-        const bool ref_more = reference[a].fitness > reference[b].fitness;
-        const bool less = runs[c][a].fitness < runs[c][b].fitness;
-        const bool more = runs[c][a].fitness > runs[c][b].fitness;
-        if ((ref_less && more) || (ref_more && less)) ++result.order_swaps;
-      }
-    }
+    result.order_swaps =
+        OrderSwaps(runs[c], reference, report.converged, &result.order_pairs);
   }
 
   // The effect of the float or Bullet option alone, against the candidate

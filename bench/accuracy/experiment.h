@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bench/accuracy/results.h"
+#include "bench/accuracy/runner.h"
 #include "common/base/status.h"
 
 namespace animat::accuracy {
@@ -37,6 +38,16 @@ struct ExperimentOptions {
 
 // The chaos measurement's motion steps.
 inline constexpr int kChaosSteps[] = {500, 1000, 2000, 4000, 6000};
+
+// The errors (over the animats whose reference converged), failures and
+// times of `result` from its animats' rows.
+void Summarise(CandidateResult* result);
+
+// Pairs of animats, both evaluated ok and both with a converged reference,
+// that `runs` ranks in the opposite order from `reference` (all three
+// indexed by animat); `pairs` receives how many pairs were compared.
+int OrderSwaps(const std::vector<Run>& runs, const std::vector<Run>& reference,
+               const std::vector<bool>& converged, int* pairs);
 
 // docs/model.md §7.6: the label of the cheapest candidate (median ms per
 // evaluation) that meets the rule (CandidateResult::MeetsRule), or "" when

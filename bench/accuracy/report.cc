@@ -69,7 +69,7 @@ KindSummary SummariseKind(const CandidateResult& c, bool evolved) {
   std::vector<double> errors, ms;
   for (const AnimatResult& a : c.animats) {
     if (a.evolved != evolved) continue;
-    errors.push_back(a.fitness_error);
+    if (a.converged) errors.push_back(a.fitness_error);
     if (a.status == "ok") ms.push_back(a.ms);
   }
   return {Median(errors), Percentile90(errors), Median(ms)};
@@ -117,14 +117,14 @@ std::string AccuracyCsv(const Report& report) {
       "candidate,integrator,substeps,drag_update,precision,backend,animat,"
       "kind,status,reason,fitness,reference_fitness,fitness_error,"
       "trajectory_error,ms_per_evaluation,cpu_ms_per_evaluation,state_hash,"
-      "deterministic,max_overlap\n";
+      "deterministic,max_overlap,reference_converged\n";
   for (const CandidateResult& c : report.candidates) {
     const Candidate& k = c.candidate;
     const std::string prefix =
         k.Label() + "," + k.integrator + "," + std::to_string(k.substeps) +
         "," + k.drag_update + "," + k.precision + "," + k.backend + ",";
     if (!Measured(c)) {
-      csv += prefix + ",,not_loaded," + CsvField(c.error) + ",,,,,,,,,\n";
+      csv += prefix + ",,not_loaded," + CsvField(c.error) + ",,,,,,,,,,\n";
       continue;
     }
     for (const AnimatResult& a : c.animats) {
@@ -137,7 +137,8 @@ std::string AccuracyCsv(const Report& report) {
              "," + Format("%.3f", a.cpu_ms) + "," +
              (ok ? Hex(a.state_hash) : "") + "," +
              (a.deterministic ? "true" : "false") + "," +
-             (ok ? CsvNumber(a.max_overlap) : "") + "\n";
+             (ok ? CsvNumber(a.max_overlap) : "") + "," +
+             (a.converged ? "true" : "false") + "\n";
     }
   }
   return csv;
@@ -206,6 +207,29 @@ std::string OverlapSummary(const Report& report) {
          std::to_string(sorted.size()) + " animats above 10%.\n\n";
 }
 
+// The animats whose reference did not converge, left out of the errors.
+std::string ConvergenceSummary(const Report& report) {
+  if (report.converged.empty()) return "";
+  std::string list;
+  int left_out = 0;
+  for (size_t a = 0; a < report.converged.size(); ++a) {
+    if (report.converged[a]) continue;
+    ++left_out;
+    list += std::string(list.empty() ? "" : "; ") + report.animats[a] + " (" +
+            Format("%.6g", report.reference_fitness[a]) + " against " +
+            Format("%.6g", report.check_fitness[a]) + ")";
+  }
+  const std::string check =
+      "Convergence: the reference against RK4 with 32 sub-steps, within " +
+      Format("%g", kConvergenceTolerance) + " of its fitness: ";
+  if (left_out == 0) return check + "every animat.\n\n";
+  return check + std::to_string(report.converged.size() - left_out) + " of " +
+         std::to_string(report.converged.size()) +
+         " animats. Left out of every error, percentile and order swap (no "
+         "fitness to measure against): " +
+         list + ".\n\n";
+}
+
 }  // namespace
 
 std::string SummaryMarkdown(const Report& report) {
@@ -232,6 +256,7 @@ std::string SummaryMarkdown(const Report& report) {
     md += "\n\n";
   }
   md += OverlapSummary(report);
+  md += ConvergenceSummary(report);
 
   md +=
       "| | candidate | fitness error median | p90 | trajectory error "
@@ -277,9 +302,10 @@ std::string SummaryMarkdown(const Report& report) {
       "Errors are relative to the reference fitness f_ref of each animat: "
       "fitness error |f − f_ref| / f_ref; trajectory error max over the "
       "motion steps 0, 50, …, 6000 of |d(t) − d_ref(t)| / f_ref, d being "
-      "the centre of mass's displacement since the start of motion. Order "
-      "swaps: pairs of animats this candidate ranks in the opposite order "
-      "from the reference (what selection would see). A "
+      "the centre of mass's displacement since the start of motion; both "
+      "over the animats whose reference converged (above). Order "
+      "swaps: pairs of those animats this candidate ranks in the opposite "
+      "order from the reference (what selection would see). A "
       "failed evaluation counts as an infinite error (\"fail\"). The front: "
       "no other candidate without failures is both faster and more "
       "accurate (median time, median fitness error); candidates with a "

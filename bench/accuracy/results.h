@@ -27,6 +27,9 @@ struct AnimatResult {
   bool deterministic = true;  // Every repetition gave the same bits.
   bool evolved = false;       // An evolved animat, not a random genome.
   double max_overlap = 0.0;   // Deepest unjoined overlap; when "ok".
+  // Its reference converged (Report::converged); only such animats enter
+  // the errors, percentiles and order swaps.
+  bool converged = true;
 };
 
 struct CandidateResult {
@@ -54,9 +57,9 @@ struct CandidateResult {
   double ms_median = 0.0;      // Over the animats' successful evaluations.
   double cpu_ms_median = 0.0;  // Likewise, CPU time.
   bool on_front = false;
-  // Pairs of animats (both evaluated ok) that this candidate ranks in the
-  // opposite order from the reference, out of `order_pairs`: what selection
-  // would see.
+  // Pairs of animats with a converged reference (both evaluated ok) that
+  // this candidate ranks in the opposite order from the reference, out of
+  // `order_pairs`: what selection would see.
   int order_swaps = 0;
   int order_pairs = 0;
 
@@ -72,6 +75,9 @@ struct CandidateResult {
 
 // The 90th-percentile fitness error the rule allows the default.
 inline constexpr double kRuleP90 = 0.01;
+// An animat's reference has converged when |f_ref - f_check| is at most
+// this fraction of f_check: ten times below the error the rule allows.
+inline constexpr double kConvergenceTolerance = 1e-3;
 // Median times within this fraction of the cheapest candidate that meets
 // the rule count as equally cheap (the report's timing repeats to about
 // this); among those the rule takes the most accurate.
@@ -108,6 +114,13 @@ struct Report {
   // Per animat, in order: the deepest unjoined overlap under the reference
   // (docs/model.md §8.6), which the contact stiffness is chosen by.
   std::vector<double> reference_overlap;
+  // Per animat, in order: its fitness under the convergence check (RK4
+  // with twice the reference's sub-steps), and whether the two agree within
+  // kConvergenceTolerance. An animat whose reference does not converge has
+  // no fitness to measure errors against: it is reported, and left out of
+  // every candidate's errors and order swaps (docs/accuracy.md).
+  std::vector<double> check_fitness;
+  std::vector<bool> converged;
   std::vector<CandidateResult> candidates;
   std::vector<ChaosResult> chaos;
   double total_seconds = 0.0;

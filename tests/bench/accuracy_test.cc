@@ -464,6 +464,53 @@ TEST(AnimatSetTest, ModelFileGivesTheConstantsTheAnimatEvolvedUnder) {
   EXPECT_EQ(config->physics.integrator, Integrator::kRk4);  // Kept.
 }
 
+// An animat whose reference did not converge has no fitness to measure a
+// candidate against: its error and its pairs are left out, its failures and
+// times are not, and the summary names it with both fitnesses.
+TEST(ConvergenceTest, UnconvergedAnimatsAreLeftOutOfErrorsAndSwaps) {
+  CandidateResult c;
+  c.candidate = DefaultCandidate();
+  c.animats = {{"a", "ok", "", 1.0, 1.0, 0.001, 0.001, 10.0, 10.0, 1, true,
+                false, 0.0, true},
+               {"b", "ok", "", 2.5, 2.0, 0.25, 0.25, 30.0, 30.0, 2, true, false,
+                0.0, false},
+               {"c", "ok", "", 3.0, 3.0, 0.002, 0.002, 20.0, 20.0, 3, true,
+                false, 0.0, true}};
+  Summarise(&c);
+  EXPECT_DOUBLE_EQ(c.fitness_error_median, 0.0015);  // Of a and c.
+  EXPECT_LT(c.fitness_error_p90, 0.01);
+  EXPECT_DOUBLE_EQ(c.ms_median, 20.0);  // Of all three.
+  EXPECT_TRUE(c.MeetsRule());
+  c.animats[1].status = "numerical_failure";
+  Summarise(&c);
+  EXPECT_EQ(c.failures, 1);  // A failure still disqualifies.
+
+  // b swaps places with c against the reference, but b is left out.
+  std::vector<accuracy::Run> reference(3), runs(3);
+  const double ref[] = {1.0, 2.0, 3.0}, got[] = {1.0, 3.5, 3.0};
+  for (int a = 0; a < 3; ++a) {
+    reference[a].fitness = ref[a];
+    runs[a].fitness = got[a];
+  }
+  int pairs = 0;
+  EXPECT_EQ(OrderSwaps(runs, reference, {true, false, true}, &pairs), 0);
+  EXPECT_EQ(pairs, 1);
+  EXPECT_EQ(OrderSwaps(runs, reference, {true, true, true}, &pairs), 1);
+  EXPECT_EQ(pairs, 3);
+
+  Report report;
+  report.repeats = 1;
+  report.animats = {"a", "b", "c"};
+  report.reference_fitness = {1.0, 2.0, 3.0};
+  report.check_fitness = {1.0, 2.5, 3.0};
+  report.converged = {true, false, true};
+  report.candidates = {c};
+  const std::string md = SummaryMarkdown(report);
+  EXPECT_NE(md.find("2 of 3 animats"), std::string::npos) << md;
+  EXPECT_NE(md.find("b (2 against 2.5)"), std::string::npos) << md;
+  EXPECT_NE(AccuracyCsv(report).find(",false\n"), std::string::npos);
+}
+
 TEST(AnimatSetTest, ModelFileMayNotNameWhatTheReportCompares) {
   Result<std::vector<Animat>> set =
       LoadAnimatSet(SetWithModelFile("physics { substeps: 4 }"));
