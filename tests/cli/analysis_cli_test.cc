@@ -90,6 +90,42 @@ TEST(AnalysisCliTest, AnalyzeOfAGenomeMatchesAnalyzeOfItsTrace) {
   EXPECT_EQ(a.fitness(), std::stod(fitness_line));
 }
 
+TEST(AnalysisCliTest, TheLabelItsMarginAndStabilityArePrintedAndWritten) {
+  const Outcome to_file =
+      Animat("analyze --genome " + Swimmer() + " --config " + ShortConfig() +
+             " -o " + Temp("stability.json"));
+  ASSERT_EQ(to_file.exit_code, 0) << to_file.output;
+  const v1::Analysis a = ReadAnalysis(Temp("stability.json"));
+  const v1::StrategyAnalysis& s = a.strategy();
+  EXPECT_NE(to_file.output.find("strategy: "), std::string::npos)
+      << to_file.output;
+  // Either stable, or the moves that change the label are listed.
+  const bool stable = s.stable();
+  EXPECT_NE(to_file.output.find(stable ? "  stable: " : "  sensitive to "),
+            std::string::npos)
+      << to_file.output;
+  EXPECT_EQ(s.shift_fraction(), 0.2);
+  EXPECT_GT(s.shift_size(), 0);
+  int changed = 0;
+  for (const v1::ThresholdShift& shift : s.shift()) {
+    EXPECT_EQ(shift.survives(), shift.label() == s.label());
+    changed += shift.survives() ? 0 : 1;
+  }
+  EXPECT_EQ(stable, changed == 0);
+  EXPECT_TRUE(s.features().has_lr_symmetry_rectified());
+  EXPECT_NE(s.rectified_label(), v1::StrategyAnalysis::LABEL_UNSPECIFIED);
+  ASSERT_EQ(s.score_size(), 4);
+  EXPECT_GT(s.score(3).descriptor_term_size(), 0);
+  // JSON on standard output: the label and stability on standard error
+  // (RunTool reads both).
+  const Outcome to_stdout = Animat("analyze --genome " + Swimmer() +
+                                   " --config " + ShortConfig() + " -o -");
+  ASSERT_EQ(to_stdout.exit_code, 0) << to_stdout.output;
+  EXPECT_NE(to_stdout.output.find("strategy: "), std::string::npos);
+  EXPECT_NE(to_stdout.output.find(stable ? "  stable: " : "  sensitive to "),
+            std::string::npos);
+}
+
 TEST(AnalysisCliTest, TheWindowAndSpacingAreChosen) {
   const Outcome run =
       Animat("analyze --genome " + Swimmer() + " --config " + ShortConfig() +
