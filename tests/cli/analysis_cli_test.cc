@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -124,6 +125,40 @@ TEST(AnalysisCliTest, TheLabelItsMarginAndStabilityArePrintedAndWritten) {
   EXPECT_NE(to_stdout.output.find("strategy: "), std::string::npos);
   EXPECT_NE(to_stdout.output.find(stable ? "  stable: " : "  sensitive to "),
             std::string::npos);
+}
+
+TEST(AnalysisCliTest, ClusterAnalysesEachGenomeAndWritesTheClustering) {
+  const std::string a = Swimmer();
+  const std::string b =
+      testing::TestData("genomes/evolved-stops-actuating.json");
+  const Outcome run =
+      Animat("cluster --genome " + a + " --genome " + b + " --genome " + a +
+             " --config " + ShortConfig() + " -o " + Temp("clusters.json") +
+             " --svg " + Temp("clusters.svg"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("seed-1198  "), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("adjusted Rand index against the labels"),
+            std::string::npos)
+      << run.output;
+  v1::StrategyClustering c;
+  ASSERT_TRUE(ReadProtoFile(Temp("clusters.json"), &c).ok());
+  ASSERT_EQ(c.animat_size(), 3);
+  EXPECT_EQ(c.animat(0).name(), "seed-1198");
+  // The same genome twice: the same features, the same cluster.
+  EXPECT_EQ(c.animat(0).pc1(), c.animat(2).pc1());
+  EXPECT_EQ(c.animat(0).cluster(), c.animat(2).cluster());
+  EXPECT_TRUE(c.animat(0).has_fitness());
+  EXPECT_EQ(ParseSvg(Temp("clusters.svg")).FindAll("g", "animat").size(), 3u);
+
+  const Outcome both =
+      Animat("cluster --genome " + a + " --db " + Temp("x.db"));
+  EXPECT_EQ(both.exit_code, 1) << both.output;
+  const Outcome configs =
+      Animat("cluster --genome " + a + " --genome " + b + " --genome " + a +
+             " --config " + ShortConfig() + " --config " + ShortConfig());
+  EXPECT_EQ(configs.exit_code, 1) << configs.output;
+  EXPECT_NE(configs.output.find("one per --genome"), std::string::npos)
+      << configs.output;
 }
 
 TEST(AnalysisCliTest, TheWindowAndSpacingAreChosen) {
@@ -537,6 +572,27 @@ TEST_F(StoreFiguresTest, KnockoutsOfAStoredIndividualUseItsRunsConfiguration) {
   EXPECT_EQ(stored.output, direct.output);
   EXPECT_EQ(*ReadFile(Temp("stored-knockouts.json")),
             *ReadFile(Temp("direct-knockouts.json")));
+}
+
+TEST_F(StoreFiguresTest,
+       ClusterTakesTheTopDistinctPhenotypesOfTheLastGeneration) {
+  // Generation 4's members: the swimmer (8) and a failure (9).
+  const Outcome run = Animat("cluster --db " + Path() + " --top 5 -o " +
+                             Temp("store-clusters.json"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  v1::StrategyClustering c;
+  ASSERT_TRUE(ReadProtoFile(Temp("store-clusters.json"), &c).ok());
+  ASSERT_EQ(c.animat_size(), 1);
+  const std::string stem =
+      std::filesystem::path(Path()).stem().string() + " #8";
+  EXPECT_EQ(c.animat(0).name(), stem);
+  // Simulated under the run's model, as analyze does.
+  const Outcome analyze = Animat("analyze --db " + Path() +
+                                 " --individual 8 -o " + Temp("eight.json"));
+  ASSERT_EQ(analyze.exit_code, 0) << analyze.output;
+  const v1::Analysis a = ReadAnalysis(Temp("eight.json"));
+  EXPECT_EQ(c.animat(0).fitness(), a.fitness());
+  EXPECT_EQ(c.animat(0).label(), a.strategy().label());
 }
 
 TEST_F(StoreFiguresTest, AnalyzeOfAStoredIndividualUsesItsRunsConfiguration) {
