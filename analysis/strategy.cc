@@ -1,5 +1,6 @@
 #include "analysis/strategy.h"
 
+#include <cmath>
 #include <cstdio>
 
 namespace animat::analysis {
@@ -135,9 +136,14 @@ std::string Format(const char* format, double value) {
 std::string TermsText(const std::vector<StrategyTerm>& terms) {
   std::string text;
   for (const StrategyTerm& term : terms) {
-    text += term.magnitude ? std::string(" |") + term.feature + "| "
-                           : std::string(" ") + term.feature + " ";
-    text += term.value ? Format("%+.3f", *term.value) : "absent";
+    // A magnitude as it is read; its sign is in the features.
+    if (term.magnitude) {
+      text += std::string(" |") + term.feature + "| ";
+      text += term.value ? Format("%.3f", std::abs(*term.value)) : "absent";
+    } else {
+      text += std::string(" ") + term.feature + " ";
+      text += term.value ? Format("%+.3f", *term.value) : "absent";
+    }
     text += Format(" (%.2f)", term.membership);
   }
   return text;

@@ -315,7 +315,7 @@ TEST(StrategyTest, TheSummaryNamesTheLabelItsStabilityAndEachTerm) {
       << text;
   EXPECT_NE(text.find("descriptors: holding +0.250 (1.00)"), std::string::npos)
       << text;
-  EXPECT_NE(text.find("|end_taper| -0.500 (1.00)"), std::string::npos) << text;
+  EXPECT_NE(text.find("|end_taper| 0.500 (1.00)"), std::string::npos) << text;
   EXPECT_NE(text.find("lr_symmetry absent"), std::string::npos) << text;
   StrategyFeatures f = HalfTurtle();
   f.irregularity = 0.295;
