@@ -152,6 +152,9 @@ int Run(const Options& o) {
   if (o.dbs.empty() == o.genomes.empty()) {
     return Fail("give --db FILE (one or more) or --genome FILE (one or more)");
   }
+  if (!o.dbs.empty() && !o.configs.empty()) {
+    return Fail("--config goes with --genome; a store's runs have their own");
+  }
   if (o.svg_given && !o.svg.ends_with(".svg")) {
     return Fail(o.svg + ": the figure is SVG; name it .svg");
   }

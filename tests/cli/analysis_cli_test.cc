@@ -153,6 +153,12 @@ TEST(AnalysisCliTest, ClusterAnalysesEachGenomeAndWritesTheClustering) {
   const Outcome both =
       Animat("cluster --genome " + a + " --db " + Temp("x.db"));
   EXPECT_EQ(both.exit_code, 1) << both.output;
+  const Outcome store_config =
+      Animat("cluster --db " + Temp("x.db") + " --config " + ShortConfig());
+  EXPECT_EQ(store_config.exit_code, 1) << store_config.output;
+  EXPECT_NE(store_config.output.find("--config goes with --genome"),
+            std::string::npos)
+      << store_config.output;
   const Outcome configs =
       Animat("cluster --genome " + a + " --genome " + b + " --genome " + a +
              " --config " + ShortConfig() + " --config " + ShortConfig());
