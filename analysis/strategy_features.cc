@@ -13,12 +13,16 @@ namespace {
 constexpr int kHarmonics = 8;
 // A lag sum below this (periods) is no travelling wave.
 constexpr double kMinWave = 0.02;
+// Actuation more irregular than this has no stroke (a drift, or noise).
+constexpr double kAperiodic = 0.5;
 // A step of the mean e − c below this share of its mean |step| holds still.
 constexpr double kHold = 0.05;
 // Forward speed below this share of the mean is coasting.
 constexpr double kSlow = 0.5;
 // Each end of the body is this share of its front–back length.
 constexpr double kEnd = 0.25;
+// Ends whose taper is below this are alike (rounding picks no end).
+constexpr double kAlike = 1e-9;
 // Ends that move less than this (radii, root mean square) keep still.
 constexpr double kStill = 1e-6;
 
@@ -38,9 +42,39 @@ std::optional<double> Symmetry(const SideSummary& x, const SideSummary& y) {
   return 1 - difference / (a + b);
 }
 
+// 1 − ‖x − y‖ / (‖x‖ + ‖y‖) of two sides' activity curves less their
+// means; undefined for a side without cells or two flat curves.
+std::optional<double> RectifiedSymmetry(const std::vector<double>& x,
+                                        const std::vector<double>& y) {
+  if (x.empty() || x.size() != y.size()) return std::nullopt;
+  double mean_x = 0;
+  double mean_y = 0;
+  for (size_t k = 0; k < x.size(); ++k) {
+    mean_x += x[k] / x.size();
+    mean_y += y[k] / y.size();
+  }
+  double xx = 0;
+  double yy = 0;
+  double dd = 0;
+  for (size_t k = 0; k < x.size(); ++k) {
+    const double u = x[k] - mean_x;
+    const double v = y[k] - mean_y;
+    xx += u * u;
+    yy += v * v;
+    dd += (u - v) * (u - v);
+  }
+  const double norms = std::sqrt(xx) + std::sqrt(yy);
+  if (!(norms > 0)) return std::nullopt;
+  return std::max(0.0, 1 - std::sqrt(dd) / norms);
+}
+
 void MeasureSides(const Analysis& a, StrategyFeatures* f) {
   f->lr_symmetry = Symmetry(a.left, a.right);
   f->fb_symmetry = Symmetry(a.front, a.back);
+  f->lr_symmetry_rectified =
+      RectifiedSymmetry(a.activity.left, a.activity.right);
+  f->fb_symmetry_rectified =
+      RectifiedSymmetry(a.activity.front, a.activity.back);
   if (a.front_to_back) f->fb_lag = a.front_to_back->periods;
   if (a.left_to_right) f->lr_lag = a.left_to_right->periods;
   if (a.front.actuation && a.back.actuation && a.front.cells > 0 &&
@@ -84,7 +118,36 @@ void MeasureIrregularity(const Recording& r, const Analysis& a,
   }
 }
 
-// Synchrony, and the stroke of the cells' mean e − c.
+// The stroke of the cells' mean e − c, `common`, frame by frame: how its
+// changing steps divide into rising and falling, and how many hold still.
+void MeasureStroke(const std::vector<double>& common, StrategyFeatures* f) {
+  double mean_step = 0;
+  for (size_t k = 1; k < common.size(); ++k) {
+    mean_step += std::abs(common[k] - common[k - 1]);
+  }
+  mean_step /= static_cast<double>(common.size() - 1);
+  if (!(mean_step > 0)) return;
+  int rising = 0;
+  int falling = 0;
+  int still = 0;
+  for (size_t k = 1; k < common.size(); ++k) {
+    const double step = common[k] - common[k - 1];
+    if (step > kHold * mean_step) {
+      ++rising;
+    } else if (step < -kHold * mean_step) {
+      ++falling;
+    } else {
+      ++still;
+    }
+  }
+  const double changing = rising + falling;  // > 0 since mean_step > 0.
+  f->rise_fraction = rising / changing;
+  f->stroke_asymmetry = std::abs(rising - falling) / changing;
+  f->holding = still / static_cast<double>(rising + falling + still);
+}
+
+// Synchrony, and the stroke of the cells' mean e − c when the actuation
+// is periodic (irregularity at most kAperiodic): a drift has no stroke.
 void MeasureCommonMode(const Recording& r, const Analysis& a,
                        StrategyFeatures* f) {
   const Window w = a.window;
@@ -114,30 +177,9 @@ void MeasureCommonMode(const Recording& r, const Analysis& a,
   if (total_power > 0) {
     f->synchrony = std::min(1.0, common_power / total_power);
   }
-
-  double mean_step = 0;
-  for (size_t k = 1; k < common.size(); ++k) {
-    mean_step += std::abs(common[k] - common[k - 1]);
+  if (f->irregularity && *f->irregularity <= kAperiodic) {
+    MeasureStroke(common, f);
   }
-  mean_step /= static_cast<double>(common.size() - 1);
-  if (!(mean_step > 0)) return;
-  int rising = 0;
-  int falling = 0;
-  int still = 0;
-  for (size_t k = 1; k < common.size(); ++k) {
-    const double step = common[k] - common[k - 1];
-    if (step > kHold * mean_step) {
-      ++rising;
-    } else if (step < -kHold * mean_step) {
-      ++falling;
-    } else {
-      ++still;
-    }
-  }
-  const double changing = rising + falling;  // > 0 since mean_step > 0.
-  f->rise_fraction = rising / changing;
-  f->stroke_asymmetry = std::abs(rising - falling) / changing;
-  f->holding = still / static_cast<double>(rising + falling + still);
 }
 
 // The share of the window's intervals whose forward speed is below kSlow
@@ -265,6 +307,12 @@ StrategyFeatures MeasureStrategyFeatures(const Recording& recording,
   MeasureCoasting(analysis, &f);
   MeasureShape(analysis, &f);
   MeasureBackProtrusion(recording, analysis, &f);
+  if (f.rise_fraction && f.end_taper) {
+    // (falling − rising) / changing = 1 − 2 × rise_fraction.
+    const double t = *f.end_taper;
+    const double sign = t > kAlike ? 1.0 : t < -kAlike ? -1.0 : 0.0;
+    f.stroke_agreement = sign * (1 - 2 * *f.rise_fraction);
+  }
   return f;
 }
 

@@ -1,9 +1,10 @@
 // The features a swimming strategy is judged on (analysis/strategy.h),
 // measured from a recording and its analysis over the analysis window:
-// symmetry and phase lags of actuation between the sides, synchrony and
-// stroke shape of the whole body, pulses of speed, the mean body's shape
-// and how far its back swings (docs/analysis.md, "Strategy", defines each).
-// Pure function; deterministic; thread-safe.
+// symmetry and phase lags of actuation between the sides, and the symmetry
+// of their rectified activity; synchrony and stroke shape of the whole
+// body, and its stroke against its pointed end; pulses of speed; the mean
+// body's shape and how far its back swings (docs/analysis.md, "Strategy",
+// defines each). Pure function; deterministic; thread-safe.
 #ifndef ANIMAT_ANALYSIS_STRATEGY_FEATURES_H_
 #define ANIMAT_ANALYSIS_STRATEGY_FEATURES_H_
 

@@ -5,7 +5,8 @@
 // Body axes, activity along them, dominant period and amplitude of
 // actuation, phase lags, driver cells and the swimming strategy
 // (docs/analysis.md), as an animat.v1.Analysis. With -o FILE it also
-// prints the strategy, its scores and features on standard output. With
+// prints the strategy, its stability, scores and features on standard
+// output (without, its label, margin and stability on standard error). With
 // --knockouts, the animat intact and with each input motion can use
 // silenced in turn, as a table (and an animat.v1.KnockoutAnalysis with -o).
 #include <algorithm>
@@ -55,12 +56,16 @@ int Run(const Options& o) {
   Status status =
       WriteProtoFile(o.output, analysis::AnalysisToProto(*result, fitness));
   if (!status.ok()) return Fail(status.message());
-  // Which window, and why: standard output unless the analysis is there.
+  // Which window, and why, and the label: standard output unless the
+  // analysis is there.
   const std::string window =
       "window: " + analysis::DescribeWindow(*result) + "\n";
-  std::fputs(window.c_str(), o.output != "-" ? stdout : stderr);
   if (o.output != "-") {
+    std::fputs(window.c_str(), stdout);
     std::fputs(analysis::StrategySummary(result->strategy).c_str(), stdout);
+  } else {
+    std::fputs(window.c_str(), stderr);
+    std::fputs(analysis::StrategyHeadline(result->strategy).c_str(), stderr);
   }
   return 0;
 }

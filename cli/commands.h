@@ -21,6 +21,7 @@ Command AddSceneCommand(CLI::App& app);
 Command AddEvolveCommand(CLI::App& app);
 Command AddLineageCommand(CLI::App& app);
 Command AddAnalyzeCommand(CLI::App& app);
+Command AddClusterCommand(CLI::App& app);
 Command AddFigureCommand(CLI::App& app);
 Command AddKeygenCommand(CLI::App& app);
 Command AddRenderCommand(CLI::App& app);

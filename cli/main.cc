@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   commands["evolve"] = animat::cli::AddEvolveCommand(app);
   commands["lineage"] = animat::cli::AddLineageCommand(app);
   commands["analyze"] = animat::cli::AddAnalyzeCommand(app);
+  commands["cluster"] = animat::cli::AddClusterCommand(app);
   commands["figure"] = animat::cli::AddFigureCommand(app);
   commands["keygen"] = animat::cli::AddKeygenCommand(app);
   commands["render"] = animat::cli::AddRenderCommand(app);

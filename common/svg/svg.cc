@@ -182,6 +182,18 @@ void SvgWriter::Polyline(const std::vector<Vec2>& points,
   out_.append("/>\n");
 }
 
+void SvgWriter::Polygon(const std::vector<Vec2>& points, std::string_view fill,
+                        std::string_view stroke, double width,
+                        std::string_view css_class) {
+  out_.append("<polygon");
+  Attribute(out_, "class", css_class);
+  Points(out_, points);
+  Attribute(out_, "fill", fill);
+  Attribute(out_, "stroke", stroke);
+  NumberAttribute(out_, "stroke-width", width);
+  out_.append("/>\n");
+}
+
 void SvgWriter::Arrow(Vec2 a, Vec2 b, std::string_view colour, double head,
                       std::string_view css_class) {
   BeginGroup(css_class);

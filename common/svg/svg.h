@@ -54,6 +54,10 @@ class SvgWriter {
   void Polyline(const std::vector<Vec2>& points, std::string_view stroke,
                 double width, std::string_view dash, std::string_view css_class,
                 std::string_view label);
+  // A closed polygon through `points`.
+  void Polygon(const std::vector<Vec2>& points, std::string_view fill,
+               std::string_view stroke, double width,
+               std::string_view css_class = "");
   // An arrow from `a` to `b` (a line and a filled head of `head` pixels).
   void Arrow(Vec2 a, Vec2 b, std::string_view colour, double head,
              std::string_view css_class);

@@ -139,6 +139,45 @@ Result<std::vector<CompletedGeneration>> CompletedGenerations(Store& store,
   return out;
 }
 
+Result<std::vector<Phenotype>> TopDistinctPhenotypes(Store& store, int64_t run,
+                                                     int count) {
+  Result<std::vector<CompletedGeneration>> completed =
+      CompletedGenerations(store, run);
+  if (!completed.ok()) return completed.status();
+  if (completed->empty()) {
+    return Status::NotFound(store.path() + ": run " + std::to_string(run) +
+                            " has completed no generation");
+  }
+  const int generation = completed->back().generation;
+  Result<sql::Statement> select = StoreAccess::Database(store).Prepare(
+      "SELECT m.id, e.fitness, e.state_hash FROM members m"
+      " JOIN evaluations e ON e.run_id = m.run_id AND e.id = m.id"
+      " WHERE m.run_id = ? AND m.generation = ? AND e.status = 'ok'"
+      " AND e.fitness IS NOT NULL ORDER BY e.fitness DESC, m.id");
+  if (!select.ok()) return select.status();
+  select->Bind(1, run).Bind(2, static_cast<int64_t>(generation));
+  std::vector<Phenotype> all;  // One per hash, fittest first.
+  Status status = select->ForEachRow([&] {
+    const std::string hash = select->Text(2);
+    for (Phenotype& seen : all) {
+      if (!hash.empty() && seen.state_hash == hash) {
+        ++seen.members;
+        return;
+      }
+    }
+    Phenotype p;
+    p.id = static_cast<uint64_t>(select->Int(0));
+    p.generation = generation;
+    p.fitness = select->Double(1);
+    p.state_hash = hash;
+    p.members = 1;
+    all.push_back(p);
+  });
+  if (!status.ok()) return status;
+  if (count >= 0 && all.size() > static_cast<size_t>(count)) all.resize(count);
+  return all;
+}
+
 namespace {
 
 // The integers of the one row `sql` gives with ?1 bound to `run`, into

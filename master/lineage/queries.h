@@ -75,6 +75,26 @@ struct CompletedGeneration {
 Result<std::vector<CompletedGeneration>> CompletedGenerations(Store& store,
                                                               int64_t run);
 
+// One phenotype of a generation: its fittest member among those whose
+// simulations are identical (the same `state_hash`), and how many members
+// share it.
+struct Phenotype {
+  uint64_t id = 0;
+  int generation = 0;  // The generation it is a member of.
+  double fitness = 0;
+  std::string state_hash;  // 16 hex digits.
+  int members = 0;         // Members of the generation with this hash.
+};
+
+// The `count` fittest distinct phenotypes of the run's last completed
+// generation: its members with status "ok", by fitness (ties: the lowest
+// id), each state hash once, at its first member in that order (a member
+// without a recorded hash is distinct). Fewer when
+// the generation has fewer; kNotFound when the run has completed no
+// generation.
+Result<std::vector<Phenotype>> TopDistinctPhenotypes(Store& store, int64_t run,
+                                                     int count);
+
 // What the store holds of a run, counted, to check that a run was recorded
 // whole (animat-master-bench does). Counts of individuals are of those
 // made for the run, evaluated or not.

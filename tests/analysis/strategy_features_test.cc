@@ -67,6 +67,32 @@ TEST(StrategyFeaturesTest, AStrongerBackIsAnAmplitudeGradient) {
   EXPECT_NEAR(*f.fb_symmetry, 0.5, 1e-4);
 }
 
+TEST(StrategyFeaturesTest, RectifiedActivityCannotTellSidesInAntiphase) {
+  // The right half half a period after the left: opposite in e − c,
+  // alike in |Δ(e − c)|.
+  const StrategyFeatures antiphase = Measure(Quadrants(0, kPi));
+  EXPECT_NEAR(*antiphase.lr_symmetry, 0, 1e-4);
+  EXPECT_NEAR(*antiphase.lr_symmetry_rectified, 1, 1e-9);
+  EXPECT_NEAR(*antiphase.fb_symmetry_rectified, 1, 1e-9);
+  // A quarter period apart, the rectified curves are half of their own
+  // period apart: |sin| against |cos|, less their means 2/π.
+  const StrategyFeatures quarter = Measure(Quadrants(0, kPi / 2));
+  EXPECT_NEAR(*quarter.lr_symmetry, 1 - std::sin(kPi / 4), 1e-4);
+  const double apart = std::sqrt(1 - 2 / kPi);
+  const double each = std::sqrt(0.5 - 4 / (kPi * kPi));
+  EXPECT_NEAR(*quarter.lr_symmetry_rectified, 1 - apart / (2 * each), 0.01);
+}
+
+TEST(StrategyFeaturesTest, RectifiedSymmetrySeesAmplitude) {
+  testing::SyntheticSwimmer swimmer;
+  for (int i = 0; i < swimmer.cells(); ++i) {
+    swimmer.amplitude.push_back(swimmer.BodyX(i) < 0 ? 0.3 : 0.1);
+  }
+  const StrategyFeatures f = Measure(swimmer);
+  EXPECT_NEAR(*f.fb_symmetry_rectified, 0.5, 1e-9);
+  EXPECT_NEAR(*f.lr_symmetry_rectified, 1, 1e-9);
+}
+
 TEST(StrategyFeaturesTest, SynchronyIsOneInStepAndZeroInAntiphase) {
   EXPECT_NEAR(*Measure(testing::SyntheticSwimmer()).synchrony, 1, 1e-9);
   const StrategyFeatures antiphase = Measure(Quadrants(kPi, 0));
@@ -126,6 +152,21 @@ TEST(StrategyFeaturesTest, EndTaperSaysWhichEndIsPointed) {
   testing::PrescribedSwimmer reversed = testing::Jellyfish();
   for (Vec2& cell : reversed.body) cell.x = -cell.x;
   EXPECT_NEAR(*Measure(reversed).end_taper, (10.0 - 2) / (2 + 10), 0.01);
+}
+
+TEST(StrategyFeaturesTest,
+     TheStrokeAgreesWithThePointedEndAsThePaperPairsThem) {
+  // A pointed back that contracts fast (55 steps rising, 15 falling)
+  // agrees; the same stroke with a pointed front does not.
+  const StrategyFeatures pointed_back = Measure(testing::Jellyfish());
+  EXPECT_NEAR(*pointed_back.stroke_agreement, 40.0 / 70, 0.02);
+  testing::PrescribedSwimmer reversed = testing::Jellyfish();
+  for (Vec2& cell : reversed.body) cell.x = -cell.x;
+  EXPECT_NEAR(*Measure(reversed).stroke_agreement, -40.0 / 70, 0.02);
+  // Ends alike say nothing.
+  EXPECT_EQ(*Measure(testing::Jellyfish(testing::JellyfishVariant::kBlunt))
+                 .stroke_agreement,
+            0);
 }
 
 TEST(StrategyFeaturesTest, ASwingingTailIsABackProtrusion) {

@@ -22,19 +22,34 @@ inline constexpr double kTwoPi = 2 * std::numbers::pi;
 // Turtle: a core with two flippers on each side, actuated by a wave that runs
 // from the back to the front (the front peaks 0.4 of a period after the
 // back) and grows towards the back; left and right alike. The flippers
-// paddle front to back. `wave_to_back` reverses the wave.
-inline PrescribedSwimmer Turtle(bool wave_to_back = false) {
+// paddle front to back. Variants undo or change one trait.
+enum class TurtleVariant {
+  kPaper,
+  kWaveToBack,      // The wave runs from the front to the back.
+  kSidesAntiphase,  // The right half's actuation half a period after the
+                    // left's: alike in activity |Δ(e − c)|, not in e − c.
+                    // Its core has no middle row: the flippers beating in
+                    // antiphase yaw the body, and a cell on the axis would
+                    // fall on a side.
+};
+
+inline PrescribedSwimmer Turtle(TurtleVariant variant = TurtleVariant::kPaper) {
   PrescribedSwimmer s;
+  const bool antiphase = variant == TurtleVariant::kSidesAntiphase;
   s.body = GridBody(4, 3, 2);
+  if (antiphase) {
+    std::erase_if(s.body, [](Vec2 cell) { return cell.y == 0; });
+  }
   for (double y : {-4.0, 4.0}) {
     s.body.push_back(Vec2(1, y));
     s.body.push_back(Vec2(-1, y));
   }
   const std::vector<Vec2> body = s.body;
   const double period = 80;
-  const double direction = wave_to_back ? -1 : 1;
+  const double direction = variant == TurtleVariant::kWaveToBack ? -1 : 1;
   auto phase = [=](int i) {
-    return direction * 0.4 * kTwoPi * (body[i].x + 3) / 6;
+    const double side = antiphase && body[i].y < 0 ? 0.5 * kTwoPi : 0.0;
+    return direction * 0.4 * kTwoPi * (body[i].x + 3) / 6 + side;
   };
   s.actuation = [=](int i, int step) {
     const double amplitude = 0.25 + 0.1 * (3 - body[i].x) / 6;
@@ -118,15 +133,33 @@ inline double JellyfishStroke(double u) {
   return -0.4;
 }
 
+// A stroke that neither holds nor pauses: a slow expansion over 0.8 of
+// the period and a fast contraction over the rest.
+inline double SawtoothStroke(double u) {
+  if (u < 0.8) return -0.4 + 0.8 * u / 0.8;
+  return 0.4 - 0.8 * (u - 0.8) / 0.2;
+}
+
+enum class JellyfishVariant {
+  kPaper,
+  kSinusoidal,   // An even sinusoidal stroke, and no coasting.
+  kBlunt,        // A rectangular body.
+  kWrongStroke,  // The stroke reversed in time: a pointed back that
+                 // expands fast and contracts slowly.
+  kSteady,       // SawtoothStroke at a steady speed: no state held, no
+                 // coasting (the traits of the paper's one individual).
+  kDrift,        // No stroke: the body expands slowly over the whole
+                 // motion, at a steady speed.
+};
+
 // Jellyfish: a bilaterally symmetric body with a blunt front and a pointed
 // back whose cells all follow JellyfishStroke together; the body scales
 // with it, and the centre of mass surges at each contraction and coasts,
-// slowing down, until the next. `sinusoidal` gives it an even sinusoidal
-// stroke instead (and no coasting); `blunt` a rectangular body.
-inline PrescribedSwimmer Jellyfish(bool sinusoidal = false,
-                                   bool blunt = false) {
+// slowing down, until the next. Variants undo or change one trait.
+inline PrescribedSwimmer Jellyfish(
+    JellyfishVariant variant = JellyfishVariant::kPaper) {
   PrescribedSwimmer s;
-  if (blunt) {
+  if (variant == JellyfishVariant::kBlunt) {
     s.body = GridBody(4, 4, 2);
   } else {
     for (int row = 0; row < 6; ++row) {
@@ -138,16 +171,31 @@ inline PrescribedSwimmer Jellyfish(bool sinusoidal = false,
   }
   const std::vector<Vec2> body = s.body;
   const int period = 100;
+  const double steps = s.steps;
   auto stroke = [=](int step) {
     const double u = static_cast<double>(step % period) / period;
-    return sinusoidal ? 0.4 * std::cos(kTwoPi * u) : JellyfishStroke(u);
+    switch (variant) {
+      case JellyfishVariant::kSinusoidal:
+        return 0.4 * std::cos(kTwoPi * u);
+      case JellyfishVariant::kWrongStroke:
+        return JellyfishStroke(u > 0 ? 1 - u : 0.0);
+      case JellyfishVariant::kSteady:
+        return SawtoothStroke(u);
+      case JellyfishVariant::kDrift:
+        return -0.4 + 0.8 * step / steps;
+      default:
+        return JellyfishStroke(u);
+    }
   };
   s.actuation = [=](int i, int step) {
     return (1 + 0.05 * body[i].x / 5) * stroke(step);
   };
   s.offset = [=](int i, int step) { return body[i] * (0.1 * stroke(step)); };
+  const bool steady = variant == JellyfishVariant::kSinusoidal ||
+                      variant == JellyfishVariant::kSteady ||
+                      variant == JellyfishVariant::kDrift;
   s.speed = [=](int step) {
-    if (sinusoidal) return 0.01;
+    if (steady) return 0.01;
     const double u = static_cast<double>(step % period) / period;
     if (u < 0.55) return 0.002;
     return 0.002 + 0.05 * std::exp(-(u - 0.55) / 0.08);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -88,6 +89,82 @@ TEST(AnalysisCliTest, AnalyzeOfAGenomeMatchesAnalyzeOfItsTrace) {
   const std::string fitness_line =
       simulate.output.substr(simulate.output.find("fitness: ") + 9);
   EXPECT_EQ(a.fitness(), std::stod(fitness_line));
+}
+
+TEST(AnalysisCliTest, TheLabelItsMarginAndStabilityArePrintedAndWritten) {
+  const Outcome to_file =
+      Animat("analyze --genome " + Swimmer() + " --config " + ShortConfig() +
+             " -o " + Temp("stability.json"));
+  ASSERT_EQ(to_file.exit_code, 0) << to_file.output;
+  const v1::Analysis a = ReadAnalysis(Temp("stability.json"));
+  const v1::StrategyAnalysis& s = a.strategy();
+  EXPECT_NE(to_file.output.find("strategy: "), std::string::npos)
+      << to_file.output;
+  // Either stable, or the moves that change the label are listed.
+  const bool stable = s.stable();
+  EXPECT_NE(to_file.output.find(stable ? "  stable: " : "  sensitive to "),
+            std::string::npos)
+      << to_file.output;
+  EXPECT_EQ(s.shift_fraction(), 0.2);
+  EXPECT_GT(s.shift_size(), 0);
+  int changed = 0;
+  for (const v1::ThresholdShift& shift : s.shift()) {
+    EXPECT_EQ(shift.survives(), shift.label() == s.label());
+    changed += shift.survives() ? 0 : 1;
+  }
+  EXPECT_EQ(stable, changed == 0);
+  EXPECT_TRUE(s.features().has_lr_symmetry_rectified());
+  EXPECT_NE(s.rectified_label(), v1::StrategyAnalysis::LABEL_UNSPECIFIED);
+  ASSERT_EQ(s.score_size(), 4);
+  EXPECT_GT(s.score(3).descriptor_term_size(), 0);
+  // JSON on standard output: the label and stability on standard error
+  // (RunTool reads both).
+  const Outcome to_stdout = Animat("analyze --genome " + Swimmer() +
+                                   " --config " + ShortConfig() + " -o -");
+  ASSERT_EQ(to_stdout.exit_code, 0) << to_stdout.output;
+  EXPECT_NE(to_stdout.output.find("strategy: "), std::string::npos);
+  EXPECT_NE(to_stdout.output.find(stable ? "  stable: " : "  sensitive to "),
+            std::string::npos);
+}
+
+TEST(AnalysisCliTest, ClusterAnalysesEachGenomeAndWritesTheClustering) {
+  const std::string a = Swimmer();
+  const std::string b =
+      testing::TestData("genomes/evolved-stops-actuating.json");
+  const Outcome run =
+      Animat("cluster --genome " + a + " --genome " + b + " --genome " + a +
+             " --config " + ShortConfig() + " -o " + Temp("clusters.json") +
+             " --svg " + Temp("clusters.svg"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("seed-1198  "), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("adjusted Rand index against the labels"),
+            std::string::npos)
+      << run.output;
+  v1::StrategyClustering c;
+  ASSERT_TRUE(ReadProtoFile(Temp("clusters.json"), &c).ok());
+  ASSERT_EQ(c.animat_size(), 3);
+  EXPECT_EQ(c.animat(0).name(), "seed-1198");
+  // The same genome twice: the same features, the same cluster.
+  EXPECT_EQ(c.animat(0).pc1(), c.animat(2).pc1());
+  EXPECT_EQ(c.animat(0).cluster(), c.animat(2).cluster());
+  EXPECT_TRUE(c.animat(0).has_fitness());
+  EXPECT_EQ(ParseSvg(Temp("clusters.svg")).FindAll("g", "animat").size(), 3u);
+
+  const Outcome both =
+      Animat("cluster --genome " + a + " --db " + Temp("x.db"));
+  EXPECT_EQ(both.exit_code, 1) << both.output;
+  const Outcome store_config =
+      Animat("cluster --db " + Temp("x.db") + " --config " + ShortConfig());
+  EXPECT_EQ(store_config.exit_code, 1) << store_config.output;
+  EXPECT_NE(store_config.output.find("--config goes with --genome"),
+            std::string::npos)
+      << store_config.output;
+  const Outcome configs =
+      Animat("cluster --genome " + a + " --genome " + b + " --genome " + a +
+             " --config " + ShortConfig() + " --config " + ShortConfig());
+  EXPECT_EQ(configs.exit_code, 1) << configs.output;
+  EXPECT_NE(configs.output.find("one per --genome"), std::string::npos)
+      << configs.output;
 }
 
 TEST(AnalysisCliTest, TheWindowAndSpacingAreChosen) {
@@ -501,6 +578,27 @@ TEST_F(StoreFiguresTest, KnockoutsOfAStoredIndividualUseItsRunsConfiguration) {
   EXPECT_EQ(stored.output, direct.output);
   EXPECT_EQ(*ReadFile(Temp("stored-knockouts.json")),
             *ReadFile(Temp("direct-knockouts.json")));
+}
+
+TEST_F(StoreFiguresTest,
+       ClusterTakesTheTopDistinctPhenotypesOfTheLastGeneration) {
+  // Generation 4's members: the swimmer (8) and a failure (9).
+  const Outcome run = Animat("cluster --db " + Path() + " --top 5 -o " +
+                             Temp("store-clusters.json"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  v1::StrategyClustering c;
+  ASSERT_TRUE(ReadProtoFile(Temp("store-clusters.json"), &c).ok());
+  ASSERT_EQ(c.animat_size(), 1);
+  const std::string stem =
+      std::filesystem::path(Path()).stem().string() + " #8";
+  EXPECT_EQ(c.animat(0).name(), stem);
+  // Simulated under the run's model, as analyze does.
+  const Outcome analyze = Animat("analyze --db " + Path() +
+                                 " --individual 8 -o " + Temp("eight.json"));
+  ASSERT_EQ(analyze.exit_code, 0) << analyze.output;
+  const v1::Analysis a = ReadAnalysis(Temp("eight.json"));
+  EXPECT_EQ(c.animat(0).fitness(), a.fitness());
+  EXPECT_EQ(c.animat(0).label(), a.strategy().label());
 }
 
 TEST_F(StoreFiguresTest, AnalyzeOfAStoredIndividualUsesItsRunsConfiguration) {

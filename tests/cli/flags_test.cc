@@ -163,6 +163,7 @@ TEST_F(FlagsTest, AnalysisCommands) {
   std::vector<std::string> knockouts = base;
   knockouts.push_back("--knockouts");
   TryEveryFlag("analyze", knockouts, {"--output"});
+  TryEveryFlag("cluster", base, {"--output", "--svg"}, {"--title"});
   TryEveryFlag(
       "render",
       {"--genome", genome_, "--config", config_, "-o", Path("page.html")},

@@ -473,5 +473,58 @@ TEST(ExportAlifeTest, EmptyRunGivesTheHeaderOnly) {
             "id,ancestor_list,origin_time,fitness,status,operators\n");
 }
 
+TEST(TopDistinctPhenotypesTest,
+     TheFittestOfEachStateHashInTheLastCompletedGeneration) {
+  std::unique_ptr<Store> store = MemoryStore();
+  ASSERT_NE(store, nullptr);
+  const int64_t run = MakeRun(*store);
+  EXPECT_EQ(TopDistinctPhenotypes(*store, run, 5).status().code(),
+            StatusCode::kNotFound);
+  std::vector<NewIndividual> made;
+  for (uint64_t id = 1; id <= 9; ++id) {
+    made.push_back(MakeIndividual(id, id <= 3 ? 0 : 1));
+  }
+  ASSERT_TRUE(store->AddIndividuals(run, made).ok());
+  // Fitness 10 − id, except that 6 ties 5; hashes: 4, 5 and 7 alike; 8
+  // failed.
+  std::vector<Evaluation> results;
+  for (uint64_t id = 1; id <= 9; ++id) {
+    if (id == 8) {
+      results.push_back(FailedEvaluation(id));
+      continue;
+    }
+    Evaluation e = OkEvaluation(id, id == 6 ? 5.0 : 10.0 - id);
+    if (id == 5 || id == 7)
+      e.result.set_state_hash(OkEvaluation(4, 0).result.state_hash());
+    results.push_back(e);
+  }
+  ASSERT_TRUE(store->RecordEvaluations(run, results).ok());
+  ASSERT_TRUE(store->AddGeneration(run, 0, {1, 2, 3}).ok());
+  ASSERT_TRUE(store->CompleteGeneration(run, 0, {1, 2, 3}, {}).ok());
+  ASSERT_TRUE(store->AddGeneration(run, 1, {1, 4, 5, 6, 7, 8, 9}).ok());
+  ASSERT_TRUE(
+      store->CompleteGeneration(run, 1, {1, 4, 5, 6, 7, 9, 8}, {}).ok());
+  // Generation 2 is begun, not completed: generation 1 is the last.
+  ASSERT_TRUE(store->AddGeneration(run, 2, {1, 2}).ok());
+  Result<std::vector<Phenotype>> top = TopDistinctPhenotypes(*store, run, 3);
+  ASSERT_TRUE(top.ok()) << top.status().ToString();
+  // By fitness: 1 (9), 4 (6), 5 (5, 4's hash), 6 (5), 7 (3, 4's hash), 9.
+  ASSERT_EQ(top->size(), 3u);
+  EXPECT_EQ((*top)[0].id, 1u);
+  EXPECT_EQ((*top)[0].members, 1);
+  EXPECT_EQ((*top)[0].generation, 1);
+  EXPECT_EQ((*top)[1].id, 4u);
+  EXPECT_EQ((*top)[1].members, 3);
+  EXPECT_EQ((*top)[1].fitness, 6);
+  EXPECT_EQ((*top)[2].id, 6u);
+  EXPECT_EQ(
+      (*top)[2].state_hash,
+      Rows(*store, "SELECT state_hash FROM evaluations WHERE id = 6")[0][0]);
+  Result<std::vector<Phenotype>> all = TopDistinctPhenotypes(*store, run, 100);
+  ASSERT_TRUE(all.ok());
+  ASSERT_EQ(all->size(), 4u);  // 1, 4, 6, 9.
+  EXPECT_EQ(all->back().id, 9u);
+}
+
 }  // namespace
 }  // namespace animat::lineage

@@ -59,6 +59,7 @@ TEST(SvgTest, WritesAWellFormedDocumentAndClosesOpenGroups) {
   svg.Arrow({0, 0}, {20, 0}, "black", 5, "distance");
   svg.Text({1, 2}, "Fish & \"chips\"", 12, "middle", -90);
   svg.Rect({0, 0}, 5, 5, "none", "grey");
+  svg.Polygon({{0, 0}, {4, 0}, {0, 3}}, "#ff0000", "black", 0.5, "marker");
   const std::string text = svg.Finish();
   testing::XmlReader reader;
   std::optional<testing::XmlElement> root = reader.Parse(text);
@@ -76,6 +77,10 @@ TEST(SvgTest, WritesAWellFormedDocumentAndClosesOpenGroups) {
             "0,0 1,2");
   EXPECT_EQ(root->FindAll("g", "distance")[0]->FindAll("polygon").size(), 1u);
   EXPECT_EQ(root->FindAll("text")[0]->text, "Fish & \"chips\"");
+  const auto markers = root->FindAll("polygon", "marker");
+  ASSERT_EQ(markers.size(), 1u);
+  EXPECT_EQ(markers[0]->Attribute("points"), "0,0 4,0 0,3");
+  EXPECT_EQ(markers[0]->Attribute("fill"), "#ff0000");
 }
 
 TEST(SvgTest, WrapsTextAtSpacesToAWidth) {
