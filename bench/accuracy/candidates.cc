@@ -85,7 +85,7 @@ Candidate ReferenceCandidate() {
 }
 
 Candidate DefaultCandidate() {
-  return Make("RALSTON3", 1, "EXPLICIT", "FLOAT", "NATIVE");
+  return Make("VELOCITY_VERLET", 2, "EXPLICIT", "FLOAT", "NATIVE");
 }
 
 std::vector<Candidate> CandidateSet() {

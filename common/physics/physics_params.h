@@ -43,10 +43,11 @@ struct PhysicsParams {
   double dt = 0.05;                // Time per simulation step.
   double actuation_max = 0.2;      // A_max, in [0, 0.5).
   double min_rest_fraction = 0.1;  // Rest length never below this * L0.
-  // Ralston's third order with one sub-step: the cheapest setting that
-  // meets model §7.6's accuracy rule (docs/accuracy.md, docs/model.md).
-  Integrator integrator = Integrator::kRalston3;
-  int substeps = 1;  // Physics sub-steps per simulation step.
+  // Velocity Verlet with two sub-steps: the cheapest setting that meets
+  // model §7.6's accuracy rule with contacts (model v3; docs/accuracy.md,
+  // docs/model.md §11.4).
+  Integrator integrator = Integrator::kVelocityVerlet;
+  int substeps = 2;  // Physics sub-steps per simulation step.
   DragUpdate drag_update = DragUpdate::kExplicit;
   PhysicsBackend backend = PhysicsBackend::kNative;
   ContactRule contact_rule = ContactRule::kUnjoined;

@@ -211,7 +211,7 @@ TEST(CandidatesTest, SetCoversEveryCombinationWithUniqueLabels) {
   for (const Candidate& c : set) labels.insert(c.Label());
   EXPECT_EQ(labels.size(), set.size());
   EXPECT_EQ(ReferenceCandidate().Label(), "R16");
-  EXPECT_EQ(DefaultCandidate().Label(), "L1f");
+  EXPECT_EQ(DefaultCandidate().Label(), "V2f");
 }
 
 TEST(CandidatesTest, LabelsSelectCandidates) {
@@ -304,7 +304,7 @@ TEST(ReportTest, WritersShowAnUnloadableCandidateAsARowWithItsError) {
 
   const std::string md = SummaryMarkdown(report);
   EXPECT_NE(md.find("grn.precision: not supported"), std::string::npos);
-  EXPECT_NE(md.find("| `L1f` |"), std::string::npos);
+  EXPECT_NE(md.find("| `V2f` |"), std::string::npos);
   EXPECT_NE(md.find("not run"), std::string::npos);
   const std::string csv = SummaryCsv(report);
   EXPECT_EQ(Count(csv, "\n"), 3);
@@ -367,7 +367,7 @@ TEST(ReportTest, MixedSetGetsATableOfEachKindAndAKindColumn) {
   EXPECT_NE(md.find("2 animats (1 random genomes, 1 evolved"),
             std::string::npos);
   EXPECT_NE(md.find("### Random and evolved animats"), std::string::npos);
-  EXPECT_NE(md.find("| `L1f` | 1.0e-01 | 1.0e-01 | 20.0 | 2.0e-02 | 2.0e-02 | "
+  EXPECT_NE(md.find("| `V2f` | 1.0e-01 | 1.0e-01 | 20.0 | 2.0e-02 | 2.0e-02 | "
                     "60.0 |"),
             std::string::npos)
       << md;

@@ -68,6 +68,7 @@ TEST(HardCaseTest, StiffSpringsBeyondTheLimitBlowUpAndAreCaught) {
   const Body body_def = MustBuild({{0.0, 0.0}, {1.0, 0.0}});
   PhysicsParams params;
   params.integrator = Integrator::kSemiImplicitEuler;  // Stable to h w = 2.
+  params.substeps = 1;
   params.damping = 0.0;
   const double omega = 2.05 / params.dt;
   params.stiffness = omega * omega * params.mass / 2.0;
@@ -160,6 +161,9 @@ TEST(HardCaseTest, HundredfoldDragBlowsUpExplicitlyButNotStably) {
   config.evaluation.motion_steps = 500;
   config.physics.drag_normal = 100.0;
   config.physics.drag_tangential = 0.5;
+  // Model v2's default integrator, Ralston's third order with one step.
+  config.physics.integrator = Integrator::kRalston3;
+  config.physics.substeps = 1;
   const Genome genome = LoadGenome("seed-1198.json");
   // Explicit quadratic drag overshoots, oscillates and diverges: a
   // recorded failure, not a crash and not a number.

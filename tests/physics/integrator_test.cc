@@ -164,6 +164,7 @@ TEST(IntegratorTest, ThirdOrderSchemesFollowTheirTableauxBitForBit) {
     const Problem p = SmoothProblem(23);
     PhysicsParams params;
     params.integrator = c.integrator;
+    params.substeps = 1;
     params.mass = 1.5;
     SoftBody body(p.body, params);
     body.SetActuation(p.expand, p.contract);
@@ -211,6 +212,7 @@ TEST(VelocityVerletTest, EqualsTwoFullForceEvaluationsPerStepToRounding) {
   const Problem p = SmoothProblem(17);
   PhysicsParams params;
   params.integrator = Integrator::kVelocityVerlet;
+  params.substeps = 1;
   SoftBody body(p.body, params);
   SoftBody forces(p.body, params);
   MotionState state = p.start;
@@ -281,6 +283,7 @@ TEST(IntegratorTest, OneSubStepOfEulerIsTheModelStep) {
   const Problem p = SmoothProblem(3);
   PhysicsParams params;
   params.integrator = Integrator::kSemiImplicitEuler;
+  params.substeps = 1;
   SoftBody body(p.body, params);
   body.SetActuation(p.expand, p.contract);
   MotionState stepped = p.start;
@@ -378,6 +381,7 @@ TEST(StableDragTest, HundredfoldDragNeverReversesTheVelocity) {
   const double v0 = 2.0;
   PhysicsParams params;
   params.integrator = Integrator::kSemiImplicitEuler;
+  params.substeps = 1;
   params.drag_normal = 100.0;
   params.drag_tangential = 0.5;
 

@@ -52,7 +52,7 @@ double Shoelace(const std::vector<Vec2>& p, const std::vector<int>& walk) {
 PhysicsParams NoDrag() {
   PhysicsParams p;
   p.integrator = Integrator::kSemiImplicitEuler;  // As written in
-                                                  // model §7.6.
+  p.substeps = 1;                                 // model §7.6.
   p.drag_normal = 0.0;
   p.drag_tangential = 0.0;
   return p;
