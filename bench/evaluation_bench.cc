@@ -165,13 +165,15 @@ BENCHMARK(BM_EvaluateThreads)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
-// The default configuration with another integrator (float network, the
-// path in use): state.range(0) is the Integrator (0 semi-implicit Euler,
-// the default before model v2; 2 RK4, the first default under v2).
+// The default configuration with another integrator and one sub-step
+// (float network, the path in use): state.range(0) is the Integrator (0
+// semi-implicit Euler, the default before model v2; 2 RK4, the first
+// default under v2; 4 Ralston's, v2's last).
 void BM_EvaluateIntegrator(benchmark::State& state) {
   const Genome& genome = BenchGenome();
   ModelConfig config;
   config.physics.integrator = static_cast<Integrator>(state.range(0));
+  config.physics.substeps = 1;
   EvaluationResult result;
   for (auto _ : state) {
     result = Evaluate(genome, config);
@@ -290,6 +292,7 @@ void BM_PhysicsStep(benchmark::State& state) {
   PhysicsSetup setup;
   PhysicsParams params;
   params.integrator = static_cast<Integrator>(state.range(0));
+  params.substeps = 1;
   SoftBody body(setup.d.body, params);
   body.SetActuation(setup.expand, setup.contract);
   MotionState motion = setup.Start();
@@ -305,7 +308,7 @@ void BM_PhysicsStep(benchmark::State& state) {
 BENCHMARK(BM_PhysicsStep)->DenseRange(0, 4)->Unit(benchmark::kMicrosecond);
 
 // state.range(0): 0 springs, 1 pressure, 2 drag, 3 contacts (UNJOINED),
-// alone.
+// alone; 4 the deepest unjoined overlap every step measures (model §8.6).
 void BM_PhysicsForces(benchmark::State& state) {
   PhysicsSetup setup;
   SoftBody body(setup.d.body, PhysicsParams{});
@@ -313,7 +316,8 @@ void BM_PhysicsForces(benchmark::State& state) {
   MotionState motion = setup.Start();
   for (Vec2& v : motion.velocity) v = {0.01, -0.02};
   std::vector<Vec2> force(setup.d.body.nodes());
-  const char* const kLabels[] = {"springs", "pressure", "drag", "contacts"};
+  const char* const kLabels[] = {"springs", "pressure", "drag", "contacts",
+                                 "overlap"};
   state.SetLabel(kLabels[state.range(0)]);
   for (auto _ : state) {
     switch (state.range(0)) {
@@ -326,14 +330,17 @@ void BM_PhysicsForces(benchmark::State& state) {
       case 2:
         body.AddDragForces(motion, force.data());
         break;
-      default:
+      case 3:
         body.AddContactForces(motion, force.data());
+        break;
+      default:
+        benchmark::DoNotOptimize(body.DeepestUnjoinedOverlap(motion));
         break;
     }
     benchmark::DoNotOptimize(force.data());
   }
 }
-BENCHMARK(BM_PhysicsForces)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PhysicsForces)->DenseRange(0, 4)->Unit(benchmark::kMicrosecond);
 
 // state.range(0): as BM_EvaluateBullet's.
 void BM_BulletStep(benchmark::State& state) {
