@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstring>
 
 namespace animat {
 namespace {
@@ -48,12 +49,21 @@ void ContactPairs::Exclude(std::span<const IndexEdge> pairs) {
     excluded_begin_[i] += excluded_begin_[i - 1];
   }
   built_at_.clear();  // The next Update rebuilds the list.
+  last_seen_.clear();
 }
 
 void ContactPairs::Update(std::span<const Vec2> position,
                           std::span<const double> radius, double range) {
   assert(position.size() == radius.size());
+  // The same bits as the last Update: the list is as valid (or as exact,
+  // out of bounds) as it was then.
+  if (builds_ > 0 && position.size() == last_seen_.size() &&
+      std::memcmp(position.data(), last_seen_.data(),
+                  position.size() * sizeof(Vec2)) == 0) {
+    return;
+  }
   if (!Valid(position)) Build(position, radius, range);
+  last_seen_.assign(position.begin(), position.end());
 }
 
 bool ContactPairs::Valid(std::span<const Vec2> position) const {

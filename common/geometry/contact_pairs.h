@@ -15,7 +15,10 @@
 // margin). A pair left out (and not excluded) therefore fails the exact
 // test d < range · s: visiting only the listed pairs, in the same order,
 // gives the same forces bit for bit. Radii must not change between
-// rebuilds (development fixes a cell's radius at its birth).
+// rebuilds (development fixes a cell's radius at its birth). An Update at
+// the very positions (the same bits) of the one before costs a comparison
+// of the positions only: integrators evaluate forces more than once at one
+// state.
 //
 // Lengths in cell radii. Owns its storage; not thread-safe (one per
 // simulation); copies are independent.
@@ -68,7 +71,9 @@ class ContactPairs {
   double skin_;
   long long builds_ = 0;
   std::vector<Vec2> built_at_;  // Positions when the list was built.
-  std::vector<int> begin_;      // Cell i's partners: [begin_[i], begin_[i+1]).
+  // The positions of the last Update: the same bits again need no check.
+  std::vector<Vec2> last_seen_;
+  std::vector<int> begin_;  // Cell i's partners: [begin_[i], begin_[i+1]).
   std::vector<int> partner_;
   // Cell i's excluded partners j > i, increasing, in
   // [excluded_begin_[i], excluded_begin_[i+1]) (empty: none excluded).

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "common/geometry/polygon.h"
+#include "common/physics/edge_geometry.h"
 
 namespace animat {
 namespace {
@@ -225,20 +226,14 @@ void SoftBody::Measure(const std::vector<Vec2>& position,
   const Vec2* x = position.data();
   geometry->spring_length.resize(rest_.size());
   geometry->spring_unit.resize(rest_.size());
-  for (size_t s = 0; s < rest_.size(); ++s) {
-    const Vec2 d = x[spring_b_[s]] - x[spring_a_[s]];
-    const double l = Length(d);
-    geometry->spring_length[s] = l;
-    geometry->spring_unit[s] = l > 0.0 ? d / l : Vec2{};
-  }
+  MeasureEdges(x, spring_a_.data(), spring_b_.data(),
+               static_cast<int>(rest_.size()), geometry->spring_length.data(),
+               geometry->spring_unit.data());
   geometry->skin_length.resize(skin_a_.size());
   geometry->skin_tangent.resize(skin_a_.size());
-  for (size_t e = 0; e < skin_a_.size(); ++e) {
-    const Vec2 d = x[skin_b_[e]] - x[skin_a_[e]];
-    const double l = Length(d);
-    geometry->skin_length[e] = l;
-    geometry->skin_tangent[e] = l > 0.0 ? d / l : Vec2{};
-  }
+  MeasureEdges(x, skin_a_.data(), skin_b_.data(),
+               static_cast<int>(skin_a_.size()), geometry->skin_length.data(),
+               geometry->skin_tangent.data());
   geometry->pressure.assign(nodes_, Vec2{});
   AddPressure(x, geometry->pressure.data());
 }

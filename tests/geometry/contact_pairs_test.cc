@@ -137,14 +137,20 @@ TEST(ContactPairsTest, NewCellRebuildsTheList) {
   EXPECT_TRUE(Listed(pairs, 1, 2));
 }
 
-TEST(ContactPairsTest, NonFiniteOrHugeCoordinatesRebuildEveryTime) {
+TEST(ContactPairsTest, NonFiniteOrHugeCoordinatesRebuildAtEveryMove) {
   testing::FpTrapsOff traps_off;  // NaN is compared on purpose.
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (const Vec2 odd : {Vec2{nan, 0.0}, Vec2{0.0, 3e6}}) {
-    const std::vector<Vec2> x = {{0.0, 0.0}, {2.0, 0.0}, odd};
+    std::vector<Vec2> x = {{0.0, 0.0}, {2.0, 0.0}, odd};
     const std::vector<double> r = {1.0, 1.0, 1.0};
     ContactPairs pairs(kSkin);
     pairs.Update(x, r, kRange);
+    // The same bits again: the list built for them still holds.
+    pairs.Update(x, r, kRange);
+    EXPECT_EQ(pairs.builds(), 1) << odd.x << ", " << odd.y;
+    // The least move of another cell: no margin can be trusted, so the
+    // list is built again.
+    x[1].x = std::nextafter(x[1].x, 3.0);
     pairs.Update(x, r, kRange);
     EXPECT_EQ(pairs.builds(), 2) << odd.x << ", " << odd.y;
     // A NaN pair is listed (the mechanics' own test rejects it).
