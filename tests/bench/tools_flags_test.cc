@@ -1,6 +1,7 @@
 // Every flag of every developer tool (bench/: animat-accuracy,
 // animat-floors, animat-dispatch-bench, animat-master-bench on CLI11;
-// animat-bench, animat-eigen-bench on Google Benchmark), given a malformed
+// animat-bench, animat-eigen-bench, animat-lanes-bench on Google
+// Benchmark), given a malformed
 // value while the rest of the command line is valid: the tool exits 1 or 2
 // with a message, never by a signal or an exception reaching terminate,
 // and before it does any work. The flags are read from each tool's --help,
@@ -211,10 +212,15 @@ TEST_F(ToolsFlagsTest, EigenBench) {
   TryGoogleBenchmarkTool("animat-eigen-bench", "BM_Accumulate<float>/0", dir_);
 }
 
+TEST_F(ToolsFlagsTest, LanesBench) {
+  TryGoogleBenchmarkTool("animat-lanes-bench", "BM_SpringsScalar", dir_);
+}
+
 TEST_F(ToolsFlagsTest, UsageErrorsExit2AndHelpExits0) {
   for (const std::string program :
        {"animat-accuracy", "animat-floors", "animat-dispatch-bench",
-        "animat-master-bench", "animat-bench", "animat-eigen-bench"}) {
+        "animat-master-bench", "animat-bench", "animat-eigen-bench",
+        "animat-lanes-bench"}) {
     SCOPED_TRACE(program);
     EXPECT_EQ(RunTool(program, "--help").exit_code, 0);
   }
@@ -232,7 +238,8 @@ TEST_F(ToolsFlagsTest, UsageErrorsExit2AndHelpExits0) {
               std::string::npos)
         << run.output;
   }
-  for (const std::string program : {"animat-bench", "animat-eigen-bench"}) {
+  for (const std::string program :
+       {"animat-bench", "animat-eigen-bench", "animat-lanes-bench"}) {
     const Outcome run = RunTool(program, "--benchmark_repetitions=-5");
     EXPECT_EQ(run.exit_code, 2) << run.output;
     EXPECT_EQ(run.output.rfind(program + ": --benchmark_repetitions: ", 0), 0u)
