@@ -33,10 +33,10 @@
 
 #include "common/body/body.h"
 #include "common/development/development.h"
+#include "common/evaluation/model_config.h"
 #include "common/genome/genome_proto.h"
 #include "common/grn/network.h"
 #include "common/io/proto_file.h"
-#include "common/evaluation/model_config.h"
 
 namespace animat {
 namespace {
@@ -71,8 +71,8 @@ void ScalarForces(const Animat& m, Vec2* f) {
 // node i in lane j at [i * kLanes + j].
 struct Batch {
   int springs = 0;
-  std::vector<int> ia, ib;    // [s * kLanes + lane]: node * kLanes + lane.
-  std::vector<double> rest;   // [s * kLanes + lane]
+  std::vector<int> ia, ib;   // [s * kLanes + lane]: node * kLanes + lane.
+  std::vector<double> rest;  // [s * kLanes + lane]
   std::vector<double> x, y, vx, vy, fx, fy;
   std::vector<double> cx, cy;  // Buffered contributions, per spring.
 };
@@ -88,29 +88,30 @@ __attribute__((target("avx512f"))) inline __m512d Gather(__m256i index,
                                   scale);
 }
 
-__attribute__((target("avx512f"))) inline void LaneSpring(
-    const Batch& p, int s, __m512d* fx, __m512d* fy) {
+__attribute__((target("avx512f"))) inline void LaneSpring(const Batch& p, int s,
+                                                          __m512d* fx,
+                                                          __m512d* fy) {
   const __m512d zero = _mm512_setzero_pd();
   const __m256i ia =
       _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&p.ia[s * kLanes]));
   const __m256i ib =
       _mm256_loadu_si256(reinterpret_cast<const __m256i*>(&p.ib[s * kLanes]));
-  const __m512d dx = _mm512_sub_pd(Gather(ib, p.x.data(), 8),
-                                   Gather(ia, p.x.data(), 8));
-  const __m512d dy = _mm512_sub_pd(Gather(ib, p.y.data(), 8),
-                                   Gather(ia, p.y.data(), 8));
-  const __m512d l = _mm512_maskz_sqrt_pd(kAll, 
-      _mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)));
+  const __m512d dx =
+      _mm512_sub_pd(Gather(ib, p.x.data(), 8), Gather(ia, p.x.data(), 8));
+  const __m512d dy =
+      _mm512_sub_pd(Gather(ib, p.y.data(), 8), Gather(ia, p.y.data(), 8));
+  const __m512d l = _mm512_maskz_sqrt_pd(
+      kAll, _mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)));
   const __mmask8 positive = _mm512_cmp_pd_mask(l, zero, _CMP_GT_OQ);
   const __m512d ux = _mm512_maskz_div_pd(positive, dx, l);
   const __m512d uy = _mm512_maskz_div_pd(positive, dy, l);
   const __m512d elastic =
       _mm512_mul_pd(_mm512_set1_pd(kStiffness),
                     _mm512_sub_pd(l, _mm512_loadu_pd(&p.rest[s * kLanes])));
-  const __m512d dvx = _mm512_sub_pd(Gather(ib, p.vx.data(), 8),
-                                    Gather(ia, p.vx.data(), 8));
-  const __m512d dvy = _mm512_sub_pd(Gather(ib, p.vy.data(), 8),
-                                    Gather(ia, p.vy.data(), 8));
+  const __m512d dvx =
+      _mm512_sub_pd(Gather(ib, p.vx.data(), 8), Gather(ia, p.vx.data(), 8));
+  const __m512d dvy =
+      _mm512_sub_pd(Gather(ib, p.vy.data(), 8), Gather(ia, p.vy.data(), 8));
   const __m512d dot =
       _mm512_add_pd(_mm512_mul_pd(dvx, ux), _mm512_mul_pd(dvy, uy));
   const __m512d force =
@@ -132,14 +133,10 @@ __attribute__((target("avx512f"))) void LaneForces(Batch* p) {
         reinterpret_cast<const __m256i*>(&p->ia[s * kLanes]));
     const __m256i ib = _mm256_loadu_si256(
         reinterpret_cast<const __m256i*>(&p->ib[s * kLanes]));
-    _mm512_i32scatter_pd(
-        fxs, ia, _mm512_add_pd(Gather(ia, fxs, 8), fx), 8);
-    _mm512_i32scatter_pd(
-        fys, ia, _mm512_add_pd(Gather(ia, fys, 8), fy), 8);
-    _mm512_i32scatter_pd(
-        fxs, ib, _mm512_sub_pd(Gather(ib, fxs, 8), fx), 8);
-    _mm512_i32scatter_pd(
-        fys, ib, _mm512_sub_pd(Gather(ib, fys, 8), fy), 8);
+    _mm512_i32scatter_pd(fxs, ia, _mm512_add_pd(Gather(ia, fxs, 8), fx), 8);
+    _mm512_i32scatter_pd(fys, ia, _mm512_add_pd(Gather(ia, fys, 8), fy), 8);
+    _mm512_i32scatter_pd(fxs, ib, _mm512_sub_pd(Gather(ib, fxs, 8), fx), 8);
+    _mm512_i32scatter_pd(fys, ib, _mm512_sub_pd(Gather(ib, fys, 8), fy), 8);
   }
 }
 
@@ -178,8 +175,7 @@ Body BenchBody() {
   DevelopmentT<double> development(network, config.grn, config.development,
                                    config.signals);
   development.Run();
-  return *BuildBody(development.embryo().position,
-                    development.embryo().radius);
+  return *BuildBody(development.embryo().position, development.embryo().radius);
 }
 
 struct Workload {
@@ -284,8 +280,9 @@ void BM_Lanes(benchmark::State& state) {
   w.ClearForces();
   kForces(&w.batch);
   if (!w.LanesMatchScalar()) {
-    std::fprintf(stderr, "lanes_bench: a lane's forces differ from the "
-                         "scalar code's bits\n");
+    std::fprintf(stderr,
+                 "lanes_bench: a lane's forces differ from the "
+                 "scalar code's bits\n");
     std::exit(1);
   }
   for (auto _ : state) {

@@ -1,13 +1,12 @@
-// Every flag of every developer tool (bench/: animat-accuracy,
-// animat-floors, animat-dispatch-bench, animat-master-bench on CLI11;
-// animat-bench, animat-eigen-bench, animat-lanes-bench on Google
-// Benchmark), given a malformed
-// value while the rest of the command line is valid: the tool exits 1 or 2
-// with a message, never by a signal or an exception reaching terminate,
-// and before it does any work. The flags are read from each tool's --help,
-// so a flag added later is tried too; a flag whose value this test does
-// not know fails it. Each base command line is cheap, in case a value were
-// wrongly taken. (`animat` has the same test in tests/cli/flags_test.cc.)
+// Every flag of every developer tool (bench/: animat-accuracy, animat-floors,
+// animat-dispatch-bench, animat-master-bench on CLI11; animat-bench,
+// animat-eigen-bench, animat-lanes-bench on Google Benchmark), given a
+// malformed value while the rest of the command line is valid: the tool exits 1
+// or 2 with a message, never by a signal or an exception reaching terminate,
+// and before it does any work. The flags are read from each tool's --help, so a
+// flag added later is tried too; a flag whose value this test does not know
+// fails it. Each base command line is cheap, in case a value were wrongly
+// taken. (`animat` has the same test in tests/cli/flags_test.cc.)
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
