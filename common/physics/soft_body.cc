@@ -117,13 +117,25 @@ void SoftBody::AddPressure(const Vec2* x, Vec2* force) const {
     const double area = 0.5 * twice;
     // c_p * l * (1 - S / S0) * n with n = (dy, -dx) / l, half to each end.
     const double half = 0.5 * cp * (1.0 - area / rest_area_[c]);
-    for (int k = begin; k < end; ++k) {
+    const auto push = [&](int k) {
       const int a = walk[k];
       const int b = next[k];
-      const Vec2 push = Vec2{x[b].y - x[a].y, -(x[b].x - x[a].x)} * half;
-      force[a] += push;
-      force[b] += push;
+      return Vec2{x[b].y - x[a].y, -(x[b].x - x[a].x)} * half;
+    };
+    // Edge k adds its push to its start, then to its end; its end is edge
+    // k + 1's start. The same additions in the same order, but each vertex
+    // taken once into a register for its two, not stored and read back.
+    Vec2 before = push(begin);
+    force[walk[begin]] += before;
+    for (int k = begin + 1; k < end; ++k) {
+      const Vec2 after = push(k);
+      Vec2 sum = force[walk[k]];
+      sum += before;
+      sum += after;
+      force[walk[k]] = sum;
+      before = after;
     }
+    force[walk[begin]] += before;  // The last edge ends where the walk began.
   }
 }
 
@@ -246,15 +258,27 @@ void SoftBody::AccelerationFrom(const Geometry& geometry,
   const Vec2* v = state.velocity.data();
   const double k = params_.stiffness;
   const double gamma = params_.damping;
-  for (size_t s = 0; s < rest_.size(); ++s) {
+  // Springs sharing their first node follow each other (the body's order):
+  // that node's force stays in a register through the run, with the same
+  // additions in the same order as one spring at a time.
+  const size_t springs = rest_.size();
+  for (size_t s = 0; s < springs;) {
     const int a = spring_a_[s];
-    const int b = spring_b_[s];
-    const Vec2 u = geometry.spring_unit[s];
-    const double f = k * (geometry.spring_length[s] - rest_[s]) +
-                     gamma * Dot(v[b] - v[a], u);
-    const Vec2 fa = u * f;
-    force[a] += fa;
-    force[b] -= fa;
+    Vec2 force_a = force[a];
+    for (; s < springs && spring_a_[s] == a; ++s) {
+      const int b = spring_b_[s];
+      const Vec2 u = geometry.spring_unit[s];
+      const double f = k * (geometry.spring_length[s] - rest_[s]) +
+                       gamma * Dot(v[b] - v[a], u);
+      const Vec2 fa = u * f;
+      force_a += fa;
+      if (b == a) {
+        force_a -= fa;  // A spring from a node to itself (never built).
+      } else {
+        force[b] -= fa;
+      }
+    }
+    force[a] = force_a;
   }
   if (drag) {
     const double dn = params_.drag_normal;
