@@ -53,6 +53,22 @@ double BestMs(Fn fn, int calls, int runs = 7) {
   return best;
 }
 
+// Full force evaluations an integrator needs per sub-step (docs/model.md
+// §7.6), at the least.
+double ForceEvaluationsPerSubstep(Integrator integrator) {
+  switch (integrator) {
+    case Integrator::kSemiImplicitEuler:
+    case Integrator::kVelocityVerlet:
+      return 1;
+    case Integrator::kSsprk3:
+    case Integrator::kRalston3:
+      return 3;
+    case Integrator::kRk4:
+      return 4;
+  }
+  return 1;
+}
+
 // The work of one network update: weights applied per cell (those from
 // sources other than the inputs frozen in motion: every input but
 // CHEMICAL, which is read at every step) and levels updated.
@@ -198,12 +214,18 @@ int Run(const std::string& genome_path) {
 
   // Floors per step, in nanoseconds.
   const PhysicsWork forces = CountForces(*body);
-  const double stages = 3;  // Ralston's third order: three evaluations.
+  // Force evaluations per step: the configured integrator's per sub-step
+  // (velocity Verlet's forces at a sub-step's end serve its next start
+  // where they depend on positions only, so one at least), times its
+  // sub-steps.
+  const double stages = ForceEvaluationsPerSubstep(config.physics.integrator) *
+                        config.physics.substeps;
   const double nodes = body->nodes();
-  // Per node and step: the stages' combinations (56 flops in two
-  // coordinates); per spring: its rest length from the actuation (7).
+  // Per node and evaluation: its stage's update of position and velocity
+  // (8 flops in two coordinates); per spring and step: its rest length
+  // from the actuation (7).
   const double physics_flops =
-      stages * forces.flops + 56 * nodes + 7 * body->springs.size();
+      stages * (forces.flops + 8 * nodes) + 7 * body->springs.size();
   const double physics_ns =
       std::max(physics_flops * flop_double,
                stages * (forces.divisions * cost.div_double +
@@ -244,9 +266,11 @@ int Run(const std::string& genome_path) {
   std::vector<Row> rows;
   char work[160];
   std::snprintf(work, sizeof(work),
-                "%.0f steps x 3 force evaluations: %.0f flops, %.0f "
-                "divisions, %.0f roots each",
-                steps, forces.flops, forces.divisions, forces.roots);
+                "%.0f steps x %.0f force evaluations (%s x%d): %.0f flops, "
+                "%.0f divisions, %.0f roots each",
+                steps, stages, IntegratorName(config.physics.integrator),
+                config.physics.substeps, forces.flops, forces.divisions,
+                forces.roots);
   rows.push_back(
       {"physics", work, physics_ns * steps * 1e-6, physics_now * steps});
   std::snprintf(work, sizeof(work),
