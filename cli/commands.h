@@ -26,6 +26,7 @@ Command AddFigureCommand(CLI::App& app);
 Command AddKeygenCommand(CLI::App& app);
 Command AddRenderCommand(CLI::App& app);
 Command AddConfigCommand(CLI::App& app);
+Command AddSignalsCommand(CLI::App& app);
 
 // Prints "animat: <message>" to stderr and returns 1.
 int Fail(const std::string& message);

@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   commands["keygen"] = animat::cli::AddKeygenCommand(app);
   commands["render"] = animat::cli::AddRenderCommand(app);
   commands["config"] = animat::cli::AddConfigCommand(app);
+  commands["signals"] = animat::cli::AddSignalsCommand(app);
   if (const std::optional<int> code =
           animat::cli::ParseCommandLine(app, argc, argv, "animat")) {
     return *code;

@@ -74,6 +74,10 @@ class MorphogenFieldT {
   // the model. The other morphogens' signals keep every bit.
   void Silence(int morphogen, GrnBatchT<S>* grn);
 
+  // The morphogens computed, as indices into the network's
+  // morphogen_nodes(), increasing.
+  const std::vector<int>& kept() const { return keep_; }
+
   double kernel(int i, int k) const { return kernel_[i * capacity_ + k]; }
   int delay(int i, int k) const { return delay_[i * capacity_ + k]; }
 

@@ -75,6 +75,22 @@ struct MotionOutcome {
   double max_overlap = 0.0;
 };
 
+// Shows the observer the signals motion step `step` applied.
+template <typename S>
+void ObserveSignals(int step, const GrnBatchT<S>& grn,
+                    const MorphogenFieldT<S>& field,
+                    EvaluationObserver* observer) {
+  const int cells = grn.cells();
+  std::vector<int> nodes;
+  std::vector<double> signal;
+  for (const int m : field.kept()) {
+    nodes.push_back(grn.network().morphogen_nodes()[m]);
+    const S* row = grn.signal_row(m);
+    signal.insert(signal.end(), row, row + cells);
+  }
+  observer->OnSignals(step, nodes, cells, signal);
+}
+
 // The motion phase from `*state` (model §7.7, §8.1), with the CHEMICAL
 // input recomputed before every network step when `chemical` is not null.
 template <typename S>
@@ -98,6 +114,7 @@ MotionOutcome RunMotion(const ModelConfig& config, GrnBatchT<S>& grn,
       const int signal_step = history_base + step - 1;
       field.Record(signal_step, grn);
       field.Apply(signal_step, &grn);
+      if (observer) ObserveSignals(step, grn, field, observer);
     }
     if (chemical) {
       SenseChemical(chemical->source, chemical->decay_length,

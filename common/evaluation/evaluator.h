@@ -105,6 +105,18 @@ class EvaluationObserver {
     (void)trial;
     (void)sources;
   }
+  // In motion step `step` (from 1), once the morphogen signals M (model
+  // §5.2) are applied, before the network steps: `nodes[m]` is the unit
+  // whose signal row m is, `signal[m * cells + i]` its M in cell i (in
+  // [0, 1], or NaN). Only for the morphogens motion computes (model
+  // §11.2), and not at all when it computes none.
+  virtual void OnSignals(int step, std::span<const int> nodes, int cells,
+                         std::span<const double> signal) {
+    (void)step;
+    (void)nodes;
+    (void)cells;
+    (void)signal;
+  }
   // After `step` steps of `phase` (step 0: the state as the phase starts).
   virtual void OnMotionStep(MotionPhase phase, int step,
                             const MotionState& state,

@@ -52,6 +52,9 @@ class GrnBatchT {
   S* signal_row(int morphogen) {
     return &signals_[static_cast<size_t>(morphogen) * capacity_];
   }
+  const S* signal_row(int morphogen) const {
+    return &signals_[static_cast<size_t>(morphogen) * capacity_];
+  }
   // Sets every cell's signals to its own levels, min(1, L) (a cell alone:
   // K(0) = 1, no delay).
   void SetOwnSignals();

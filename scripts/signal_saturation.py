@@ -1,0 +1,126 @@
+#!/usr/bin/env python3
+"""Signal saturation measured (docs/analysis.md, "Signal saturation"): for
+each best, the share of (cell, morphogen, motion step) values at the cap
+M = 1, per morphogen and in all, and the steps a signal takes to cross the
+body. Every number is `animat signals --json` of this build; the script
+only finds the bests and tabulates, as a table (Markdown) and the numbers
+(JSON).
+
+  model v2   every replication best of docs/results/bests/ (dn*-seed*),
+             under its own configuration (model v2: no contacts);
+  model v3   the best of each lineage store given with --db (the run's own
+             configuration), e.g. the third replication's stores.
+
+  scripts/signal_saturation.py [--animat build/bin/animat] \\
+      [--db RUN.db ...] --out docs/results/saturation
+
+Exit 0 when every animat was measured, 1 otherwise. Standard library only.
+"""
+
+import argparse
+import glob
+import json
+import os
+import re
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def run(command):
+    done = subprocess.run(command, capture_output=True, text=True, check=False)
+    if done.returncode != 0:
+        raise RuntimeError(" ".join(command) + ": " + done.stderr.strip())
+    return done.stdout
+
+
+def measure(animat, source):
+    return json.loads(run([animat, "signals", "--json"] + source))
+
+
+def v2_bests():
+    pattern = os.path.join(ROOT, "docs", "results", "bests", "dn*-seed*-*.json")
+    for path in sorted(glob.glob(pattern)):
+        name = os.path.basename(path)[:-len(".json")]
+        config = path[:-len(".json")] + ".config.txtpb"
+        yield name, ["--genome", path, "--config", config]
+
+
+def v3_bests(animat, dbs):
+    for db in dbs:
+        best = run([animat, "lineage", "best", "--db", db])
+        found = re.search(r"^id: (\d+)$", best, re.MULTILINE)
+        if not found:
+            raise RuntimeError(f"{db}: no best individual")
+        name = os.path.basename(db)[:-len(".db")] + "-" + found.group(1)
+        yield name, ["--db", db, "--individual", found.group(1)]
+
+
+def row(model, name, s):
+    values = s["values"]
+    shares = [m["share"] for m in s["morphogens"]]
+    return {
+        "model": model,
+        "animat": name,
+        "cells": s["cells"],
+        "diameter": s["diameter"],
+        "crossing_steps": s["crossing_steps"],
+        "kernel_sum_mean": s["kernel_sum_mean"],
+        "kernel_sum_max": s["kernel_sum_max"],
+        "morphogens": len(shares),
+        "capped_share": s["capped"] / values if values else 0.0,
+        "morphogen_shares": shares,
+    }
+
+
+def markdown(rows):
+    lines = [
+        "| model | best | cells | diameter (radii) | steps to cross | "
+        "kernel sum, mean (max) | morphogens in motion | values at the cap "
+        "| per morphogen |",
+        "|---|---|---:|---:|---:|---:|---:|---:|---|",
+    ]
+    for r in rows:
+        per = ", ".join(f"{s:.2f}" for s in r["morphogen_shares"]) or "—"
+        lines.append(
+            f"| {r['model']} | {r['animat']} | {r['cells']} | "
+            f"{r['diameter']:.1f} | {r['crossing_steps']} | "
+            f"{r['kernel_sum_mean']:.1f} ({r['kernel_sum_max']:.1f}) | "
+            f"{r['morphogens']} | {r['capped_share']:.2f} | {per} |")
+    return "\n".join(lines) + "\n"
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--animat", default=os.path.join(ROOT, "build", "bin",
+                                                         "animat"))
+    parser.add_argument("--db", action="append", default=[])
+    parser.add_argument("--out", required=True,
+                        help="writes OUT.md and OUT.json")
+    args = parser.parse_args()
+    rows, failures = [], 0
+    sources = [("v2", name, source) for name, source in v2_bests()]
+    try:
+        sources += [("v3", name, source)
+                    for name, source in v3_bests(args.animat, args.db)]
+    except RuntimeError as error:
+        print(f"signal_saturation.py: {error}", file=sys.stderr)
+        failures += 1
+    for model, name, source in sources:
+        try:
+            rows.append(row(model, name, measure(args.animat, source)))
+        except RuntimeError as error:
+            print(f"signal_saturation.py: {error}", file=sys.stderr)
+            failures += 1
+    with open(args.out + ".json", "w") as f:
+        json.dump({"bests": rows}, f, indent=1)
+        f.write("\n")
+    with open(args.out + ".md", "w") as f:
+        f.write(markdown(rows))
+    print(markdown(rows), end="")
+    sys.exit(1 if failures or not rows else 0)
+
+
+if __name__ == "__main__":
+    main()
