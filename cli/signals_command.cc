@@ -35,12 +35,11 @@ void PrintText(const SignalSaturation& s) {
   std::printf("kernel_sum_mean: %s\n",
               ShortestDouble(s.kernel_sum_mean).c_str());
   std::printf("kernel_sum_max: %s\n", ShortestDouble(s.kernel_sum_max).c_str());
-  std::printf("capped_share: %s (%lld of %lld)\n",
-              Share(s.values() > 0
-                        ? static_cast<double>(s.capped()) / s.values()
-                        : 0.0)
-                  .c_str(),
-              s.capped(), s.values());
+  std::printf(
+      "capped_share: %s (%lld of %lld)\n",
+      Share(s.values() > 0 ? static_cast<double>(s.capped()) / s.values() : 0.0)
+          .c_str(),
+      s.capped(), s.values());
   if (s.morphogens.empty()) {
     std::printf("morphogens: none computed during motion\n");
     return;
@@ -65,11 +64,11 @@ void PrintJson(const SignalSaturation& s) {
   out += "  \"morphogens\": [";
   for (size_t k = 0; k < s.morphogens.size(); ++k) {
     const MorphogenSaturation& m = s.morphogens[k];
-    out += std::string(k > 0 ? "," : "") + "\n    {\"node\": " +
-           std::to_string(m.node) + ", \"values\": " +
-           std::to_string(m.values) + ", \"capped\": " +
-           std::to_string(m.capped) + ", \"share\": " +
-           ShortestDouble(m.share()) + "}";
+    out += std::string(k > 0 ? "," : "") +
+           "\n    {\"node\": " + std::to_string(m.node) +
+           ", \"values\": " + std::to_string(m.values) +
+           ", \"capped\": " + std::to_string(m.capped) +
+           ", \"share\": " + ShortestDouble(m.share()) + "}";
   }
   out += s.morphogens.empty() ? "]\n}\n" : "\n  ]\n}\n";
   std::fputs(out.c_str(), stdout);

@@ -70,8 +70,7 @@ std::vector<double> KernelSums(std::span<const Vec2> positions,
 
 int SignalDelay(double distance, const SignalParams& params) {
   const double steps = std::floor(distance / params.delay_length + 0.5);
-  return steps >= params.max_delay ? params.max_delay
-                                   : static_cast<int>(steps);
+  return steps >= params.max_delay ? params.max_delay : static_cast<int>(steps);
 }
 
 Result<SignalSaturation> MeasureSignalSaturation(const Genome& genome,

@@ -28,7 +28,7 @@ namespace animat {
 
 // One morphogen's signal over the motion phase.
 struct MorphogenSaturation {
-  int node = -1;      // The unit that makes it (model §2.1).
+  int node = -1;         // The unit that makes it (model §2.1).
   long long values = 0;  // (cell, step) pairs seen: cells x motion steps.
   long long capped = 0;  // Of those, M at the cap (the sum reached 1).
   // The share of values at the cap, in [0, 1]; 0 without values.

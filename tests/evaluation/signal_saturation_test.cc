@@ -26,11 +26,12 @@ TEST(SaturationCounterTest, CountsValuesAtTheCapPerMorphogenInNodeOrder) {
   SaturationCounter counter;
   // Rows for units 7 and 3, three cells each.
   const std::vector<int> nodes = {7, 3};
-  counter.OnSignals(1, nodes, 3, std::vector<double>{1.0, 0.5, 1.0,  //
-                                                     0.0, nan, 1.0});
-  counter.OnSignals(2, nodes, 3,
-                    std::vector<double>{std::nextafter(1.0, 0.0), 1.0, 0.2,
-                                        1.0, 1.0, 1.0});
+  counter.OnSignals(1, nodes, 3,
+                    std::vector<double>{1.0, 0.5, 1.0,  //
+                                        0.0, nan, 1.0});
+  counter.OnSignals(
+      2, nodes, 3,
+      std::vector<double>{std::nextafter(1.0, 0.0), 1.0, 0.2, 1.0, 1.0, 1.0});
   ASSERT_EQ(counter.morphogens().size(), 2u);
   const MorphogenSaturation& three = counter.morphogens()[0];
   const MorphogenSaturation& seven = counter.morphogens()[1];
