@@ -613,5 +613,38 @@ TEST_F(StoreFiguresTest, AnalyzeOfAStoredIndividualUsesItsRunsConfiguration) {
   EXPECT_EQ(unknown.exit_code, 1);
 }
 
+// `animat signals` prints, as text and as JSON, the same measurement of
+// the same animat, from a genome and from its trace; a failing animat
+// exits 1 saying why.
+TEST(AnalysisCliTest, SignalsAgreeAsTextAndJsonFromGenomeOrTrace) {
+  const std::string config = ShortConfig();
+  const Outcome text =
+      Animat("signals --genome " + Swimmer() + " --config " + config);
+  ASSERT_EQ(text.exit_code, 0) << text.output;
+  EXPECT_NE(text.output.find("motion_steps: 1200\n"), std::string::npos)
+      << text.output;
+  EXPECT_NE(text.output.find("crossing_steps: "), std::string::npos);
+  EXPECT_NE(text.output.find("capped_share: "), std::string::npos);
+  const Outcome json = Animat("signals --genome " + Swimmer() + " --config " +
+                              config + " --json");
+  ASSERT_EQ(json.exit_code, 0) << json.output;
+  EXPECT_EQ(json.output.rfind("{\n", 0), 0u) << json.output;
+  EXPECT_NE(json.output.find("\"motion_steps\": 1200,"), std::string::npos);
+  const Outcome simulate =
+      Animat("simulate --genome " + Swimmer() + " --config " + config +
+             " --trace " + Temp("signals-trace.binpb"));
+  ASSERT_EQ(simulate.exit_code, 0) << simulate.output;
+  const Outcome from_trace =
+      Animat("signals --trace " + Temp("signals-trace.binpb") + " --json");
+  ASSERT_EQ(from_trace.exit_code, 0) << from_trace.output;
+  EXPECT_EQ(from_trace.output, json.output);
+
+  const Outcome failing = Animat(
+      "signals --genome " + testing::TestData("genomes/seed-1-nonviable.json"));
+  EXPECT_EQ(failing.exit_code, 1) << failing.output;
+  EXPECT_NE(failing.output.find("non_viable"), std::string::npos)
+      << failing.output;
+}
+
 }  // namespace
 }  // namespace animat

@@ -164,6 +164,7 @@ TEST_F(FlagsTest, AnalysisCommands) {
   knockouts.push_back("--knockouts");
   TryEveryFlag("analyze", knockouts, {"--output"});
   TryEveryFlag("cluster", base, {"--output", "--svg"}, {"--title"});
+  TryEveryFlag("signals", base, {});
   TryEveryFlag(
       "render",
       {"--genome", genome_, "--config", config_, "-o", Path("page.html")},
