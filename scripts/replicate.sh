@@ -6,8 +6,16 @@
 # one worker each. Run it again to continue: each store resumes where it
 # stopped, and a finished run is extended to GENERATIONS.
 #
-#   scripts/replicate.sh [--generations G] [--jobs J] [--out DIR]
-#     [--seeds "1 2 3 4"] [--drags "0.1 1 10"]
+# --extend-to G2: a run still improving after GENERATIONS (a new best in
+# its last 20 generations) continues to G2 generations.
+# An arm of the experiment: --prefix NAME- names its runs NAME-dn...;
+# --physics 'FIELDS' adds model.physics fields (e.g. 'contact_rule: ALL')
+# and --model 'FIELDS' other model fields (e.g. 'signals { kernel_length:
+# 1 }') to every run's configuration.
+#
+#   scripts/replicate.sh [--generations G] [--extend-to G2] [--jobs J]
+#     [--out DIR] [--seeds "1 2 3 4"] [--drags "0.1 1 10"] [--prefix P]
+#     [--physics FIELDS] [--model FIELDS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -16,6 +24,10 @@ jobs="$(nproc)"
 out=out/replication
 seeds="1 2 3 4"
 drags="0.1 1 10"
+extend_to=0
+prefix=""
+physics_extra=""
+model_extra=""
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --generations) generations="$2"; shift 2 ;;
@@ -23,6 +35,10 @@ while [[ $# -gt 0 ]]; do
     --out) out="$2"; shift 2 ;;
     --seeds) seeds="$2"; shift 2 ;;
     --drags) drags="$2"; shift 2 ;;
+    --extend-to) extend_to="$2"; shift 2 ;;
+    --prefix) prefix="$2"; shift 2 ;;
+    --physics) physics_extra="$2"; shift 2 ;;
+    --model) model_extra="$2"; shift 2 ;;
     *) echo "replicate.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
@@ -46,11 +62,14 @@ runs=()
 for seed in $seeds; do
   for drag in $drags; do
     tangential="$(awk -v d="$drag" 'BEGIN { printf "%.10g", d / 200 }')"
-    name="dn${drag}-seed${seed}"
+    name="${prefix}dn${drag}-seed${seed}"
     config="$out/$name.txtpb"
-    # The paper's setup with this run's seed and drag.
+    # The paper's setup with this run's seed and drag (and the arm's
+    # fields).
+    model_fields="physics { drag_normal: $drag drag_tangential: $tangential"
+    model_fields+=" $physics_extra } $model_extra"
     sed -e "s/^  seed: 1 /  seed: $seed /" \
-      -e "s/^model {}/model { physics { drag_normal: $drag drag_tangential: $tangential } }/" \
+      -e "s/^model {}/model { ${model_fields//\//\\/} }/" \
       configs/paper.txtpb > "$config"
     grep -q "drag_normal: $drag " "$config"
     grep -q "^  seed: $seed " "$config"
@@ -58,19 +77,44 @@ for seed in $seeds; do
   done
 done
 
+# Generations a store holds (0 without one).
+held() {
+  [[ -f "$1" ]] || { echo 0; return; }
+  sqlite3 "$1" "SELECT COALESCE(MAX(generation) + 1, 0) FROM individuals"
+}
+# 1 when the store's last 20 generations hold a new best.
+improving() {
+  sqlite3 "$1" "SELECT COALESCE(
+    MAX(CASE WHEN generation >= (SELECT MAX(generation) FROM individuals) - 19
+        THEN fitness END) >
+    MAX(CASE WHEN generation < (SELECT MAX(generation) FROM individuals) - 19
+        THEN fitness END), 0) FROM individuals"
+}
 run_one() {
-  local out="$1" bin="$2" generations="$3" name="$4"
-  if [[ -f "$out/$name.db" ]]; then
-    "$bin/animat" evolve --db "$out/$name.db" --workers 1 \
-      --generations "$generations" >> "$out/$name.log" 2>&1
-  else
-    "$bin/animat" evolve --config "$out/$name.txtpb" --db "$out/$name.db" \
+  local out="$1" bin="$2" generations="$3" extend_to="$4" name="$5"
+  local db="$out/$name.db"
+  if [[ ! -f "$db" ]]; then
+    "$bin/animat" evolve --config "$out/$name.txtpb" --db "$db" \
       --workers 1 --generations "$generations" >> "$out/$name.log" 2>&1
+  elif (( $(held "$db") < generations )); then
+    "$bin/animat" evolve --db "$db" --workers 1 \
+      --generations "$generations" >> "$out/$name.log" 2>&1
+  fi
+  # Extended once it reached GENERATIONS still improving, or resumed when
+  # an extension was under way.
+  local n
+  n="$(held "$db")"
+  if (( extend_to > generations && n >= generations && n < extend_to )) &&
+    { (( n > generations )) || [[ "$(improving "$db")" == 1 ]]; }; then
+    echo "$name: continuing from $n to $extend_to generations" \
+      >> "$out/$name.log"
+    "$bin/animat" evolve --db "$db" --workers 1 \
+      --generations "$extend_to" >> "$out/$name.log" 2>&1
   fi
   echo "$name: $(tail -n 1 "$out/$name.log")"
 }
-export -f run_one
+export -f run_one held improving
 printf '%s\n' "${runs[@]}" |
   xargs -P "$jobs" -I{} bash -c 'run_one "$@"' _ "$out" "$bin" \
-    "$generations" {}
+    "$generations" "$extend_to" {}
 echo "stores in $out; figures: build/bin/animat figure fitness --db $out/dn1-seed1.db ..."
