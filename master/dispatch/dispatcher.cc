@@ -22,6 +22,12 @@ int CreditCap(int threads) {
                         1 << 20));
 }
 
+// The peer's host, escaped and cut short: it reaches every log line about
+// this worker.
+std::string WorkerName(const v1::Hello& hello) {
+  return ForeignText(hello.host(), 64) + ":" + std::to_string(hello.pid());
+}
+
 }  // namespace
 
 Status Dispatcher::CheckOptions(const DispatcherOptions& options) {
@@ -175,6 +181,11 @@ void Dispatcher::Receive(std::vector<Completion>* done) {
     }
     Result<v1::Envelope> envelope =
         protocol::Decode(frames[1].to_string_view());
+    if (!envelope.ok() &&
+        RefuseMalformedHello(identity, frames[1].data(), frames[1].size(),
+                             envelope.status().message())) {
+      continue;
+    }
     if (!envelope.ok()) {
       const auto it = workers_.find(identity);
       Ignore("a malformed message from " +
@@ -267,22 +278,40 @@ std::string Dispatcher::Refusal(const v1::Hello& hello,
   return "";
 }
 
+bool Dispatcher::RefuseMalformedHello(const std::string& identity,
+                                      const void* data, size_t size,
+                                      const std::string& why) {
+  // Only a frame a Hello may fill is parsed again (a larger one costs a
+  // log line, as before).
+  if (size > protocol::MaxEnvelopeBytes(v1::Envelope::kHello)) return false;
+  v1::Envelope envelope;
+  if (!envelope.ParseFromArray(data, static_cast<int>(size)) ||
+      !envelope.has_hello()) {
+    return false;
+  }
+  RefuseWorker(identity, WorkerName(envelope.hello()), why);
+  return true;
+}
+
+void Dispatcher::RefuseWorker(const std::string& identity,
+                              const std::string& name,
+                              const std::string& refusal) {
+  if (workers_.count(identity) != 0) {
+    DropWorker(identity, /*died=*/false);
+  }
+  options_.log("refused worker " + name + ": " + refusal);
+  ++stats_.refused;
+  v1::Envelope envelope;
+  envelope.mutable_refuse()->set_reason(refusal);
+  Send(identity, envelope);
+}
+
 void Dispatcher::Greet(const std::string& identity, const v1::Hello& hello,
                        uint32_t envelope_version) {
-  // The peer's host, escaped and cut short: it reaches every log line
-  // about this worker.
-  const std::string name =
-      ForeignText(hello.host(), 64) + ":" + std::to_string(hello.pid());
+  const std::string name = WorkerName(hello);
   const std::string refusal = Refusal(hello, envelope_version);
   if (!refusal.empty()) {
-    if (workers_.count(identity) != 0) {
-      DropWorker(identity, /*died=*/false);
-    }
-    options_.log("refused worker " + name + ": " + refusal);
-    ++stats_.refused;
-    v1::Envelope envelope;
-    envelope.mutable_refuse()->set_reason(refusal);
-    Send(identity, envelope);
+    RefuseWorker(identity, name, refusal);
     return;
   }
   if (workers_.count(identity) != 0) {

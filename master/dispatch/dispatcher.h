@@ -191,6 +191,13 @@ class Dispatcher final : public EvaluationService {
              uint32_t envelope_version);
   // Why a hello is refused ("" when it is not).
   std::string Refusal(const v1::Hello& hello, uint32_t envelope_version) const;
+  // Refuses the peer, saying why, and ends its session if it had one.
+  void RefuseWorker(const std::string& identity, const std::string& name,
+                    const std::string& refusal);
+  // A frame that failed to decode (`why`) but is a Hello (a field out of
+  // its limits): the peer is refused saying why. False when it is not.
+  bool RefuseMalformedHello(const std::string& identity, const void* data,
+                            size_t size, const std::string& why);
   void Collect(const std::string& identity, WorkerState& worker,
                const v1::Results& results, std::vector<Completion>* done);
   void Dispatch();

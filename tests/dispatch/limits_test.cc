@@ -81,17 +81,6 @@ TEST_F(DispatchTest, MasterRefusesEveryNumericFieldOutOfRangeSayingWhy) {
       "from " +
       name;
   const std::vector<Case> cases = {
-      {"hello.threads 0", Hello([](v1::Hello* h) { h->set_threads(0); }),
-       "hello.threads 0 outside [1, 65536]"},
-      {"hello.threads 65537",
-       Hello([](v1::Hello* h) { h->set_threads(protocol::kMaxThreads + 1); }),
-       "hello.threads 65537 outside [1, 65536]"},
-      {"hello.threads 2^32 - 1",
-       Hello([](v1::Hello* h) { h->set_threads(UINT32_MAX); }),
-       "hello.threads 4294967295 outside [1, 65536]"},
-      {"hello.pid 2^31",
-       Hello([](v1::Hello* h) { h->set_pid(protocol::kMaxPid + 1); }),
-       "hello.pid 2147483648 outside [0, 2147483647]"},
       {"credit 0", Credit(0), "credit.credit 0 outside [1, 262144]"},
       {"credit 262145", Credit(protocol::kMaxCredit + 1),
        "credit.credit 262145 outside [1, 262144]"},
@@ -167,6 +156,42 @@ TEST_F(DispatchTest, MasterRefusesEveryNumericFieldOutOfRangeSayingWhy) {
   peer.Send(result([](v1::WorkResult*) {}));
   ASSERT_TRUE(ServeUntilAllDone(kShortWait, pump));
   ExpectEachCompletedOnceAsEvaluatedDirectly({held});
+}
+
+// A Hello with a field out of its limits is refused, and told why: the
+// peer learns what to fix, and nothing else of the master changes.
+TEST_F(DispatchTest, MasterRefusesAHelloOutOfRangeTellingThePeerWhy) {
+  ASSERT_TRUE(StartDispatcher(SimulatedOptions()));
+  const std::vector<Case> cases = {
+      {"hello.threads 0", Hello([](v1::Hello* h) { h->set_threads(0); }),
+       "hello.threads 0 outside [1, 65536]"},
+      {"hello.threads 65537",
+       Hello([](v1::Hello* h) { h->set_threads(protocol::kMaxThreads + 1); }),
+       "hello.threads 65537 outside [1, 65536]"},
+      {"hello.threads 2^32 - 1",
+       Hello([](v1::Hello* h) { h->set_threads(UINT32_MAX); }),
+       "hello.threads 4294967295 outside [1, 65536]"},
+      {"hello.pid 2^31",
+       Hello([](v1::Hello* h) { h->set_pid(protocol::kMaxPid + 1); }),
+       "hello.pid 2147483648 outside [0, 2147483647]"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.what);
+    const size_t from = log_.size();
+    const int64_t refused = dispatcher_->stats().refused;
+    FakeWorker peer(context_, dispatcher_->endpoint(), clock_);
+    peer.Send(c.envelope);
+    ASSERT_TRUE(Serve([&] { return peer.refusal().has_value(); }, kShortWait,
+                      [&] { peer.Pump(); }))
+        << log_.Dump(from);
+    EXPECT_NE(peer.refusal()->find(c.reason), std::string::npos)
+        << *peer.refusal();
+    EXPECT_FALSE(peer.welcomed());
+    EXPECT_EQ(log_.Count({"refused worker fake-worker:", c.reason}, from), 1)
+        << log_.Dump(from);
+    EXPECT_EQ(dispatcher_->stats().refused, refused + 1);
+    EXPECT_EQ(dispatcher_->workers(), 0u);
+  }
 }
 
 TEST_F(DispatchTest, WorkerRefusesEveryNumericFieldOutOfRangeSayingWhy) {
@@ -357,20 +382,26 @@ TEST_F(DispatchTest, PeersStringsReachTheLogEscapedAndCutShort) {
   EXPECT_LT(line.size(), 400u) << line;
   EXPECT_EQ(peer.refusal()->find('\n'), std::string::npos) << *peer.refusal();
 
-  // A host beyond kMaxHostBytes is refused whole, before a name is made.
+  // A host beyond kMaxHostBytes is refused, told why, and named cut short.
+  const size_t long_from = log_.size();
   FakeWorker long_host(context_, dispatcher_->endpoint(), clock_);
   v1::Envelope long_hello = FakeHello(1, 5454);
   long_hello.mutable_hello()->set_host(
       std::string(protocol::kMaxHostBytes + 1, 'h'));
   long_host.Send(long_hello);
-  ASSERT_TRUE(Serve(
-      [&] {
-        return log_.Count(
-                   {"ignored a malformed message from an unknown peer: "
-                    "hello.host of 256 bytes, above the limit of 255"}) == 1;
-      },
-      kShortWait, [&] { long_host.Pump(); }))
+  ASSERT_TRUE(Serve([&] { return long_host.refusal().has_value(); }, kShortWait,
+                    [&] { long_host.Pump(); }))
       << log_.Dump();
+  EXPECT_EQ(*long_host.refusal(),
+            "hello.host of 256 bytes, above the limit of 255");
+  ASSERT_EQ(log_.size(), long_from + 1) << log_.Dump();
+  const std::string long_line = log_.lines()[long_from];
+  EXPECT_EQ(long_line.rfind("refused worker " + std::string(64, 'h') +
+                                "...:5454: hello.host of 256 bytes",
+                            0),
+            0u)
+      << long_line;
+  EXPECT_LT(long_line.size(), 200u) << long_line;
   EXPECT_FALSE(long_host.welcomed());
 }
 
