@@ -242,13 +242,23 @@ void Worker::Session::Accept(const v1::Work& work) {
                  (welcomed_ ? "" : " before a welcome"));
     return;
   }
-  for (const v1::WorkItem& item : work.items()) {
-    if (stopping_) {
+  // An item out of the limits is left out, its credit given back: the
+  // others are evaluated, and the master's count of this worker's credit
+  // stays right.
+  int left_out = 0;
+  for (int i = 0; i < work.items_size(); ++i) {
+    const v1::WorkItem& item = work.items(i);
+    const Status valid = protocol::CheckWorkItem(item, i);
+    if (!valid.ok()) {
+      options_.log("ignored a work item from the master: " + valid.message());
+      ++left_out;
+    } else if (stopping_) {
       returned_.push_back(item.individual());  // Handed back.
     } else {
       pool()->Submit(item);
     }
   }
+  if (left_out > 0 && !stopping_) SendCredit(left_out);
 }
 
 void Worker::Session::CollectFinished() {

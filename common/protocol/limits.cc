@@ -88,13 +88,10 @@ Status CheckWelcome(const v1::Welcome& w) {
                     kMaxHeartbeatMs);
 }
 
+// The items one by one are the worker's to check (CheckWorkItem), so that
+// one bad item does not cost the others; but not their number.
 Status CheckWork(const v1::Work& work) {
-  Status status = CheckCount("work.items", work.items(), kMaxBatch);
-  for (int i = 0; status.ok() && i < work.items_size(); ++i) {
-    status = CheckRange("work.items[" + std::to_string(i) + "].individual",
-                        work.items(i).individual(), 0, kMaxIndividual);
-  }
-  return status;
+  return CheckCount("work.items", work.items(), kMaxBatch);
 }
 
 // The results one by one are the master's to check (CheckWorkResult), so
@@ -117,6 +114,11 @@ Status CheckGoodbye(const v1::Goodbye& g) {
 }
 
 }  // namespace
+
+Status CheckWorkItem(const v1::WorkItem& item, int index) {
+  return CheckRange("work.items[" + std::to_string(index) + "].individual",
+                    item.individual(), 0, kMaxIndividual);
+}
 
 size_t MaxEnvelopeBytes(v1::Envelope::BodyCase body) {
   switch (body) {

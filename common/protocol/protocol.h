@@ -127,8 +127,15 @@ Result<v1::Envelope> Decode(std::string_view frame);
 // range, e.g. "hello.threads 0 outside [1, 65536]". A Results message's
 // results are checked here for their number and individuals only; the
 // rest of each one the master checks one by one (CheckWorkResult), so
-// that one bad result does not cost the others.
+// that one bad result does not cost the others. Likewise a Work's items
+// are checked here for their number only, and each by the worker
+// (CheckWorkItem).
 Status CheckEnvelope(const v1::Envelope& envelope);
+
+// Item `index` of a Work: its individual within [0, kMaxIndividual], e.g.
+// "work.items[1].individual 9223372036854775808 outside [0,
+// 9223372036854775807]".
+Status CheckWorkItem(const v1::WorkItem& item, int index);
 
 // A result a master may record: a known status other than unspecified,
 // a fitness present, finite and >= 0 exactly when the status is OK, a

@@ -5,10 +5,12 @@
 // strings reach the log escaped and cut short.
 #include <unistd.h>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -250,9 +252,6 @@ TEST_F(DispatchTest, WorkerRefusesEveryNumericFieldOutOfRangeSayingWhy) {
        "welcome.heartbeat_ms 4294967295 outside"},
       {"257 items", work(protocol::kMaxBatch + 1, 1),
        "work.items holds 257, above the limit of 256"},
-      {"an item for individual 2^63", work(1, kBeyondIndividuals),
-       "work.items[0].individual 9223372036854775808 outside [0, "
-       "9223372036854775807]"},
       {"4097 acknowledged", acknowledge(protocol::kMaxAcknowledged + 1, 1),
        "acknowledge.individuals holds 4097, above the limit of 4096"},
       {"individual 2^63 acknowledged", acknowledge(1, kBeyondIndividuals),
@@ -290,6 +289,88 @@ TEST_F(DispatchTest, WorkerRefusesEveryNumericFieldOutOfRangeSayingWhy) {
   ASSERT_TRUE(worker.Signal(SIGTERM));
   ASSERT_TRUE(worker.WaitExit(kShortWait));
   EXPECT_EQ(worker.exit_code(), 0) << worker.Describe();
+}
+
+// A Work with one item out of range (an individual of 2^63, which only a
+// non-conforming master sends) beside three valid ones: the worker
+// evaluates the three, gives back the credit of the fourth at once, and
+// says which item it left out.
+TEST_F(DispatchTest, WorkerEvaluatesTheValidItemsBesideAnOutOfRangeOne) {
+  FakeMaster master(context_);
+  WorkerArgs args;
+  args.endpoint = master.endpoint();
+  args.threads = 1;
+  args.heartbeat_ms = 1000;  // Slack: this test is not about liveness.
+  WorkerProcess worker(args);
+  ASSERT_TRUE(worker.started());
+  const std::optional<RoutedMessage> hello = master.ReceiveEnvelope(
+      "", kShortWait, [](const v1::Envelope& e) { return e.has_hello(); });
+  ASSERT_TRUE(hello.has_value());
+  const std::string& id = hello->identity;
+
+  const v1::Config config = ConfigToProto(config_);
+  v1::Envelope welcome;
+  v1::Welcome* w = welcome.mutable_welcome();
+  w->set_protocol_version(protocol::kVersion);
+  w->set_build_id(protocol::BuildId());
+  *w->mutable_config() = config;
+  w->set_config_hash(protocol::ConfigHash(config));
+  w->set_heartbeat_ms(1000);
+  master.Send(id, welcome);
+  ASSERT_TRUE(
+      master
+          .ReceiveEnvelope(id, kShortWait,
+                           [](const v1::Envelope& e) { return e.has_credit(); })
+          .has_value())
+      << worker.output();
+
+  const v1::Genome genome = DataGenome("seed-1198");
+  v1::Envelope work;
+  work.mutable_work()->set_config_hash(protocol::ConfigHash(config));
+  for (const uint64_t individual :
+       {uint64_t{5}, uint64_t{6}, kBeyondIndividuals, uint64_t{8}}) {
+    v1::WorkItem* item = work.mutable_work()->add_items();
+    item->set_individual(individual);
+    *item->mutable_genome() = genome;
+    item->set_genome_hash(protocol::GenomeHash(genome));
+  }
+  master.Send(id, work);
+  std::set<uint64_t> returned;
+  std::vector<v1::Envelope> seen;
+  ASSERT_TRUE(master
+                  .ReceiveEnvelope(
+                      id, kLongWait,
+                      [&](const v1::Envelope& e) {
+                        for (const v1::WorkResult& r : e.results().results()) {
+                          returned.insert(r.individual());
+                          ExpectSameResult(r.result(),
+                                           DirectResult(genome, config_),
+                                           r.individual());
+                        }
+                        return returned.size() == 3;
+                      },
+                      &seen)
+                  .has_value())
+      << worker.output();
+  EXPECT_EQ(returned, (std::set<uint64_t>{5, 6, 8}));
+  // The first credit after the Work is the left-out item's, before any
+  // result could earn one.
+  const auto credit = std::find_if(seen.begin(), seen.end(),
+                                   [](auto& e) { return e.has_credit(); });
+  ASSERT_NE(credit, seen.end());
+  EXPECT_EQ(credit->credit().credit(), 1u);
+  EXPECT_LT(credit - seen.begin(),
+            std::find_if(seen.begin(), seen.end(), [](auto& e) {
+              return e.has_results();
+            }) - seen.begin());
+  EXPECT_NE(worker.output().find(
+                "ignored a work item from the master: work.items[2].individual "
+                "9223372036854775808 outside [0, 9223372036854775807]"),
+            std::string::npos)
+      << worker.output();
+  EXPECT_TRUE(worker.Running());
+  ASSERT_TRUE(worker.Signal(SIGTERM));
+  ASSERT_TRUE(worker.WaitExit(kShortWait));
 }
 
 // The hello of issue 14: a host name of 16 MiB. ZeroMQ drops it on the
