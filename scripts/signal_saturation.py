@@ -11,8 +11,13 @@ only finds the bests and tabulates, as a table (Markdown) and the numbers
   model v3   the best of each lineage store given with --db (the run's own
              configuration), e.g. the third replication's stores.
 
+With --kernel-lengths 3,1.5,1 it also prints, for each v2 best's body
+(its rest positions, from `animat simulate --trace`), the cells' mean and
+largest kernel sum at each kernel length: the body as it grew, the kernel
+changed alone (a run at another length grows other bodies).
+
   scripts/signal_saturation.py [--animat build/bin/animat] \\
-      [--db RUN.db ...] --out docs/results/saturation
+      [--db RUN.db ...] [--kernel-lengths L,...] --out docs/results/saturation
 
 Exit 0 when every animat was measured, 1 otherwise. Standard library only.
 """
@@ -20,10 +25,12 @@ Exit 0 when every animat was measured, 1 otherwise. Standard library only.
 import argparse
 import glob
 import json
+import math
 import os
 import re
 import subprocess
 import sys
+import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -91,11 +98,43 @@ def markdown(rows):
     return "\n".join(lines) + "\n"
 
 
+def body_positions(animat, source):
+    with tempfile.TemporaryDirectory() as scratch:
+        trace = os.path.join(scratch, "trace.json")
+        run([animat, "simulate", "--trace", trace, "--every", "1000000"] +
+            source)
+        with open(trace) as f:
+            nodes = json.load(f)["body"]["nodes"]
+    return [(n.get("x", 0.0), n.get("y", 0.0)) for n in nodes]
+
+
+def kernel_sums(positions, length):
+    sums = [sum(math.exp(-math.dist(p, q) / length) for q in positions)
+            for p in positions]
+    return sum(sums) / len(sums), max(sums)
+
+
+def kernel_table(animat, lengths):
+    header = "| v2 best | " + " | ".join(
+        f"kernel length {l:g}: mean (max)" for l in lengths) + " |"
+    lines = [header, "|---|" + "---:|" * len(lengths)]
+    for name, source in v2_bests():
+        positions = body_positions(animat, source)
+        cells = []
+        for length in lengths:
+            mean, largest = kernel_sums(positions, length)
+            cells.append(f"{mean:.2f} ({largest:.2f})")
+        lines.append(f"| {name} | " + " | ".join(cells) + " |")
+    return "\n".join(lines) + "\n"
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--animat", default=os.path.join(ROOT, "build", "bin",
                                                          "animat"))
     parser.add_argument("--db", action="append", default=[])
+    parser.add_argument("--kernel-lengths", default="",
+                        help="comma-separated kernel lengths (radii)")
     parser.add_argument("--out", required=True,
                         help="writes OUT.md and OUT.json")
     args = parser.parse_args()
@@ -119,6 +158,15 @@ def main():
     with open(args.out + ".md", "w") as f:
         f.write(markdown(rows))
     print(markdown(rows), end="")
+    if args.kernel_lengths:
+        lengths = [float(l) for l in args.kernel_lengths.split(",")]
+        if not lengths or min(lengths) <= 0:
+            parser.error("--kernel-lengths: lengths must be > 0")
+        table = kernel_table(args.animat, lengths)
+        with open(args.out + "-kernels.md", "w") as f:
+            f.write(table)
+        print()
+        print(table, end="")
     sys.exit(1 if failures or not rows else 0)
 
 
