@@ -316,7 +316,15 @@ void Worker::Session::Send(const v1::Envelope& envelope) {
 
 void Worker::Session::ReadHandshakes() {
   using Kind = protocol::HandshakeEvent::Kind;
-  for (const protocol::HandshakeEvent& event : handshakes_.Read()) {
+  for (protocol::HandshakeEvent event : handshakes_.Read()) {
+    if (event.kind == Kind::kFailed && event.code == 0 &&
+        options_.curve_server_key.empty()) {
+      // A worker without keys meets a handshake failure without detail
+      // from a master that requires CurveZMQ and closed the connection
+      // before this side read the master's mechanism (a race that load
+      // decides): the mismatch, said as such, once.
+      event.kind = Kind::kMechanismMismatch;
+    }
     std::string& said = worker_.handshake_problem_;
     if (event.kind == Kind::kSucceeded) {
       said.clear();
@@ -355,8 +363,12 @@ std::string Worker::Session::HandshakeProblem(
                          "has no keys: give it --curve-server (the master's "
                          "public key) and --curve-secret (docs/security.md)";
     default:
+      // With keys, ZeroMQ gives no detail both when the server key is
+      // wrong and when a master without CurveZMQ closes first: both said.
       return curve ? "the CurveZMQ handshake with " + master +
-                         " failed: is --curve-server the master's public key?"
+                         " failed: is --curve-server the master's public "
+                         "key? If it is, the master does not use CurveZMQ "
+                         "(the master's log says which)"
                    : "the handshake with " + master + " failed (ZeroMQ error " +
                          std::to_string(event.code) + ")";
   }
