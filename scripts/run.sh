@@ -6,10 +6,11 @@
 # --generations 40 to run longer).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup.sh
-# Only the programs the main job runs (and the libraries they need), not the
-# tests and benchmarks: scripts/test.sh builds those into the same tree.
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+# Only the packages and programs the main job needs, not the tests and
+# benchmarks (scripts/test.sh installs and builds those into the same tree).
+scripts/setup.sh --run
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DANIMAT_BUILD_TESTS=OFF -DANIMAT_BUILD_BENCH=OFF
 cmake --build build --target animat animat-worker animat-master
 mkdir -p out
 # Progress goes to standard error; the closing line (the best, or how to

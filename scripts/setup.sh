@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
-# Installs every Debian package the build and the tests need. Idempotent
-# and non-interactive: it installs only what is missing, and does nothing
-# when everything is present.
+# Installs every Debian package the build and the tests need; with --run,
+# only those the main job (scripts/run.sh: the programs, not the tests and
+# benchmarks) needs. Idempotent and non-interactive: it installs only what
+# is missing, and does nothing when everything is present.
+#
+#   scripts/setup.sh [--run]
 set -euo pipefail
 
+# The build of the programs, and sqlite3 to ask a store.
 packages=(
   g++ cmake ninja-build pkg-config
   protobuf-compiler libprotobuf-dev
@@ -12,14 +16,24 @@ packages=(
   libeigen3-dev
   libzmq3-dev cppzmq-dev
   libsqlite3-dev sqlite3
-  libgtest-dev libgmock-dev libbenchmark-dev
-  clang-format
-  clang-14 libclang-rt-14-dev
-  chromium
-  slurm-wlm munge systemd
-  podman runc debootstrap debian-archive-keyring
-  python3 python3-yaml
 )
+case "${1:-}" in
+  --run) ;;
+  "")
+    # The tests and benchmarks, the format check and fuzzing, the browser
+    # tests, the deployment tests (Slurm, containers, systemd), the scripts.
+    packages+=(
+      libgtest-dev libgmock-dev libbenchmark-dev
+      clang-format
+      clang-14 libclang-rt-14-dev
+      chromium
+      slurm-wlm munge systemd
+      podman runc debootstrap debian-archive-keyring
+      python3 python3-yaml
+    )
+    ;;
+  *) echo "setup: unknown argument $1 (expected --run or nothing)" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do
