@@ -1,9 +1,31 @@
 #include "common/evaluation/signal_saturation.h"
 
 #include <algorithm>
-#include <cmath>
+
+#include "common/kernels/kernels.h"
 
 namespace animat {
+namespace {
+
+// K(d) and tau(d) of each distance, by the model's own kernels (those
+// development and motion use).
+void PairKernelsOf(const std::vector<double>& distance,
+                   const SignalParams& params, std::vector<double>* kernel,
+                   std::vector<double>* delay) {
+  kernel->resize(distance.size());
+  delay->resize(distance.size());
+  kernels::PairKernelArgs args;
+  args.pairs = distance.size();
+  args.distance = distance.data();
+  args.kernel_length = params.kernel_length;
+  args.delay_length = params.delay_length;
+  args.max_delay = params.max_delay;
+  args.kernel = kernel->data();
+  args.delay = delay->data();
+  kernels::PairKernels(args);
+}
+
+}  // namespace
 
 long long SignalSaturation::values() const {
   long long n = 0;
@@ -57,20 +79,29 @@ double Diameter(std::span<const Vec2> positions) {
 
 std::vector<double> KernelSums(std::span<const Vec2> positions,
                                const SignalParams& params) {
-  std::vector<double> sums;
-  for (const Vec2 p : positions) {
-    double sum = 0.0;
-    for (const Vec2 q : positions) {
-      sum += std::exp(-Length(q - p) / params.kernel_length);
+  const size_t n = positions.size();
+  std::vector<double> distance, kernel, delay;
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t k = i + 1; k < n; ++k) {
+      distance.push_back(Length(positions[k] - positions[i]));
     }
-    sums.push_back(sum);
+  }
+  PairKernelsOf(distance, params, &kernel, &delay);
+  std::vector<double> sums(n, 1.0);  // K(0) = 1: the cell itself.
+  size_t pair = 0;
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t k = i + 1; k < n; ++k, ++pair) {
+      sums[i] += kernel[pair];
+      sums[k] += kernel[pair];
+    }
   }
   return sums;
 }
 
 int SignalDelay(double distance, const SignalParams& params) {
-  const double steps = std::floor(distance / params.delay_length + 0.5);
-  return steps >= params.max_delay ? params.max_delay : static_cast<int>(steps);
+  std::vector<double> kernel, delay;
+  PairKernelsOf({distance}, params, &kernel, &delay);
+  return static_cast<int>(delay[0]);
 }
 
 Result<SignalSaturation> MeasureSignalSaturation(const Genome& genome,
