@@ -130,13 +130,8 @@ TEST_F(DispatchTest, WorkerSendsUnacknowledgedResultsAgainToItsNextMaster) {
   WorkerProcess worker(args);
   ASSERT_TRUE(worker.started());
 
-  v1::Envelope welcome;
-  v1::Welcome* w = welcome.mutable_welcome();
-  w->set_protocol_version(protocol::kVersion);
-  w->set_build_id(protocol::BuildId());
-  *w->mutable_config() = config;
-  w->set_config_hash(config_hash);
-  w->set_heartbeat_ms(kHeartbeatMs);  // Silent for 300 ms: master lost.
+  // Silent for 300 ms: master lost.
+  const v1::Envelope welcome = FakeWelcome(config, kHeartbeatMs, config_hash);
   const auto is_hello = [](const v1::Envelope& e) { return e.has_hello(); };
   const auto results_of_7 = [](const v1::Envelope& e) {
     return e.has_results() && e.results().results_size() > 0 &&

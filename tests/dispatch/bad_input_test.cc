@@ -420,15 +420,8 @@ TEST_F(DispatchTest, WorkerSurvivesGarbageFromItsMasterAndAnswersCorrectly) {
     }
     return envelope;
   };
-  auto welcome = [&](const v1::Config& c, uint64_t hash) {
-    v1::Envelope envelope;
-    v1::Welcome* w = envelope.mutable_welcome();
-    w->set_protocol_version(protocol::kVersion);
-    w->set_build_id(protocol::BuildId());
-    *w->mutable_config() = c;
-    w->set_config_hash(hash);
-    w->set_heartbeat_ms(1000);
-    return envelope;
+  auto welcome = [](const v1::Config& c, uint64_t hash) {
+    return FakeWelcome(c, 1000, hash);
   };
   v1::Config bad_config = config;
   bad_config.mutable_evaluation()->set_motion_steps(-1);

@@ -21,6 +21,7 @@
 
 #include "animat/v1/protocol.pb.h"
 #include "common/base/clock.h"
+#include "common/protocol/genome_wire.h"
 #include "common/protocol/protocol.h"
 #include "common/protocol/zmq_poll.h"
 
@@ -39,6 +40,20 @@ inline v1::Envelope FakeHello(int threads, uint64_t pid,
   hello->set_host("fake-worker");
   hello->set_pid(pid);
   hello->set_instance(instance);
+  return envelope;
+}
+
+// A welcome as a master of this build sends it: `config` and its hash, or
+// `hash` in its place (a mismatch on purpose).
+inline v1::Envelope FakeWelcome(const v1::Config& config, uint32_t heartbeat_ms,
+                                std::optional<uint64_t> hash = std::nullopt) {
+  v1::Envelope envelope;
+  v1::Welcome* w = envelope.mutable_welcome();
+  w->set_protocol_version(protocol::kVersion);
+  w->set_build_id(protocol::BuildId());
+  *w->mutable_config() = config;
+  w->set_config_hash(hash.value_or(protocol::ConfigHash(config)));
+  w->set_heartbeat_ms(heartbeat_ms);
   return envelope;
 }
 

@@ -196,13 +196,19 @@ TEST_F(DispatchTest, MasterRefusesAHelloOutOfRangeTellingThePeerWhy) {
   }
 }
 
-TEST_F(DispatchTest, WorkerRefusesEveryNumericFieldOutOfRangeSayingWhy) {
-  FakeMaster master(context_);
+// A real worker of one thread for `master`, with slack in its heartbeat:
+// these tests are not about liveness.
+WorkerArgs SlackWorker(const FakeMaster& master) {
   WorkerArgs args;
   args.endpoint = master.endpoint();
   args.threads = 1;
-  args.heartbeat_ms = 1000;  // Slack: this test is not about liveness.
-  WorkerProcess worker(args);
+  args.heartbeat_ms = 1000;
+  return args;
+}
+
+TEST_F(DispatchTest, WorkerRefusesEveryNumericFieldOutOfRangeSayingWhy) {
+  FakeMaster master(context_);
+  WorkerProcess worker(SlackWorker(master));
   ASSERT_TRUE(worker.started());
   const std::optional<RoutedMessage> hello = master.ReceiveEnvelope(
       "", kShortWait, [](const v1::Envelope& e) { return e.has_hello(); });
@@ -211,14 +217,7 @@ TEST_F(DispatchTest, WorkerRefusesEveryNumericFieldOutOfRangeSayingWhy) {
 
   const v1::Config config = ConfigToProto(config_);
   const auto welcome = [&](uint32_t heartbeat_ms) {
-    v1::Envelope envelope;
-    v1::Welcome* w = envelope.mutable_welcome();
-    w->set_protocol_version(protocol::kVersion);
-    w->set_build_id(protocol::BuildId());
-    *w->mutable_config() = config;
-    w->set_config_hash(protocol::ConfigHash(config));
-    w->set_heartbeat_ms(heartbeat_ms);
-    return envelope;
+    return FakeWelcome(config, heartbeat_ms);
   };
   const v1::Genome genome = DataGenome("seed-1198");
   const auto work = [&](int items, uint64_t first) {
@@ -297,11 +296,7 @@ TEST_F(DispatchTest, WorkerRefusesEveryNumericFieldOutOfRangeSayingWhy) {
 // says which item it left out.
 TEST_F(DispatchTest, WorkerEvaluatesTheValidItemsBesideAnOutOfRangeOne) {
   FakeMaster master(context_);
-  WorkerArgs args;
-  args.endpoint = master.endpoint();
-  args.threads = 1;
-  args.heartbeat_ms = 1000;  // Slack: this test is not about liveness.
-  WorkerProcess worker(args);
+  WorkerProcess worker(SlackWorker(master));
   ASSERT_TRUE(worker.started());
   const std::optional<RoutedMessage> hello = master.ReceiveEnvelope(
       "", kShortWait, [](const v1::Envelope& e) { return e.has_hello(); });
@@ -309,14 +304,7 @@ TEST_F(DispatchTest, WorkerEvaluatesTheValidItemsBesideAnOutOfRangeOne) {
   const std::string& id = hello->identity;
 
   const v1::Config config = ConfigToProto(config_);
-  v1::Envelope welcome;
-  v1::Welcome* w = welcome.mutable_welcome();
-  w->set_protocol_version(protocol::kVersion);
-  w->set_build_id(protocol::BuildId());
-  *w->mutable_config() = config;
-  w->set_config_hash(protocol::ConfigHash(config));
-  w->set_heartbeat_ms(1000);
-  master.Send(id, welcome);
+  master.Send(id, FakeWelcome(config, 1000));
   ASSERT_TRUE(
       master
           .ReceiveEnvelope(id, kShortWait,
