@@ -40,7 +40,7 @@
 #include "common/protocol/protocol.h"
 #include "master/dispatch/evaluation_service.h"
 #include "master/dispatch/isolation.h"
-#include "master/dispatch/work_encoder.h"
+#include "master/dispatch/lease_scheduler.h"
 
 namespace zmq {
 class context_t;
@@ -92,17 +92,7 @@ struct DispatcherOptions {
   const Clock* clock = &RealClock();
 };
 
-struct DispatcherStats {
-  int64_t dispatched = 0;  // Items sent (re-sends counted again).
-  int64_t completed = 0;   // Individuals completed with a result.
-  int64_t isolated = 0;    // Evaluations of a suspect alone started.
-  int64_t crashed = 0;     // Individuals completed as CRASHED.
-  int64_t requeued = 0;    // Leases returned to the queue.
-  int64_t ignored = 0;     // Messages or results ignored (logged).
-  int64_t refused = 0;     // Workers refused.
-};
-
-class Dispatcher final : public EvaluationService {
+class Dispatcher final : public EvaluationService, private Outbox {
  public:
   // Checks the options (CurveZMQ keys, an endpoint beyond loopback) and
   // binds the socket: fails, saying why, without binding when they are
@@ -145,128 +135,38 @@ class Dispatcher final : public EvaluationService {
   void Acknowledge(const std::vector<uint64_t>& individuals) override;
 
   // Individuals submitted and not completed.
-  size_t pending() const override { return pending_.size(); }
+  size_t pending() const override { return scheduler_.pending(); }
   // Workers currently greeted.
-  size_t workers() const { return workers_.size(); }
-  const DispatcherStats& stats() const { return stats_; }
-  uint64_t config_hash() const { return config_hash_; }
+  size_t workers() const { return scheduler_.workers(); }
+  const DispatcherStats& stats() const { return scheduler_.stats(); }
+  uint64_t config_hash() const { return scheduler_.config_hash(); }
   // The endpoint actually bound ("tcp://127.0.0.1:41234" for a ":*" port).
   const std::string& endpoint() const { return endpoint_; }
   // DispatcherOptions::clock.
   const Clock& clock() const override { return *options_.clock; }
 
  private:
-  using TimePoint = Clock::TimePoint;
-
-  struct WorkerState {
-    std::string name;       // host:pid
-    uint64_t instance = 0;  // Hello.instance; 0 when none was given.
-    int threads = 1;
-    int credit = 0;
-    bool null_evaluation = false;
-    TimePoint last_heard;
-    TimePoint last_sent;
-    bool send_failed = false;  // The last send failed (logged once).
-    std::set<uint64_t> leased;
-    std::optional<uint64_t> suspect;  // The suspect it holds alone.
-  };
-  struct Individual {
-    std::string item;  // The serialised WorkItem (work_encoder.h).
-    uint64_t genome_hash = 0;
-    uint64_t lease = 0;  // Serial of its current lease.
-    int attempts = 0;
-    bool leased = false;
-    bool isolated = false;  // Being evaluated alone (options_.isolation).
-    std::string worker;     // Identity, when leased.
-    TimePoint deadline;
-  };
-
   Dispatcher(zmq::context_t* context, DispatcherOptions options,
              v1::Config model);
-
+  // Reads what the socket holds and hands each decoded message to the
+  // scheduler.
   void Receive(std::vector<Completion>* done);
-  void Handle(const std::string& identity, const v1::Envelope& envelope,
-              std::vector<Completion>* done);
-  void Greet(const std::string& identity, const v1::Hello& hello,
-             uint32_t envelope_version);
-  // Why a hello is refused ("" when it is not).
-  std::string Refusal(const v1::Hello& hello, uint32_t envelope_version) const;
-  // Refuses the peer, saying why, and ends its session if it had one.
-  void RefuseWorker(const std::string& identity, const std::string& name,
-                    const std::string& refusal);
   // A frame that failed to decode (`why`) but is a Hello (a field out of
   // its limits): the peer is refused saying why. False when it is not.
   bool RefuseMalformedHello(const std::string& identity, const void* data,
                             size_t size, const std::string& why);
-  void Collect(const std::string& identity, WorkerState& worker,
-               const v1::Results& results, std::vector<Completion>* done);
-  void Dispatch();
-  void Lease(const std::string& identity, WorkerState& worker,
-             uint64_t individual, TimePoint deadline, WorkEncoder* work,
-             std::vector<uint64_t>* items);
-  // Ends an individual's lease (it stays pending).
-  void Unlease(uint64_t individual);
-  // Removes a queued individual from its queue.
-  void Unqueue(uint64_t individual);
-  void Housekeep(std::vector<Completion>* done);
-  // The idle notice, when it is due.
-  void NoticeIdle(TimePoint now);
-  // Back to the queue after a lease ended without a result; after
-  // kMaxAttempts counted, to the isolation instead.
-  void Requeue(uint64_t individual, bool counts_as_attempt);
-  void Isolate(uint64_t individual);
-  // The isolated evaluations that ended: completions, or suspects again.
-  void CollectIsolated(std::vector<Completion>* done);
-  // Completes a pending individual (no longer leased or queued) with
-  // `result`, evaluated by `evaluator`.
-  void Complete(uint64_t individual, v1::EvaluationResult result,
-                std::string evaluator, double wall_seconds,
-                bool null_evaluation, std::vector<Completion>* done);
-  void DropWorker(const std::string& identity, bool died);
-  // True when the message was handed to the socket.
-  bool Send(const std::string& identity, v1::Envelope envelope);
-  // The same for an encoded envelope; `what` names its body for the log.
-  bool SendEncoded(const std::string& identity, const char* what,
-                   const std::string& bytes);
-  // Sends the work of `items`; if it cannot be delivered, they go back to
-  // the queue at once (no attempt counted) and false is returned.
-  bool SendWork(const std::string& identity, WorkerState& worker,
-                WorkEncoder* work, const std::vector<uint64_t>& items);
-  void Ignore(const std::string& what);
+  // Outbox: the socket, without waiting.
+  bool Deliver(const std::string& identity, const std::string& bytes,
+               std::string* problem) override;
 
   DispatcherOptions options_;
   std::string endpoint_;
-  v1::Config config_;
-  uint64_t config_hash_;
   // Declared before the socket: destroyed after it (ZAP outlives it).
   std::unique_ptr<ZapAuthenticator> zap_;
   std::unique_ptr<zmq::socket_t> socket_;
   // Handshakes that fail on socket_ (destroyed before it).
   std::unique_ptr<HandshakeLog> handshakes_;
-  std::map<uint64_t, Individual> pending_;
-  std::deque<uint64_t> queue_;  // Queued individuals, next first.
-  // Queued after a failed attempt, by most attempts first (so failures
-  // are decided quickly), then individual: (-attempts, individual).
-  std::set<std::pair<int, uint64_t>> suspects_;
-  std::string drainer_;  // The worker emptying itself for a suspect.
-  // Leases in the order made (their deadlines are non-decreasing); a record
-  // whose lease already ended is skipped when it reaches the front.
-  struct LeaseRecord {
-    TimePoint deadline;
-    uint64_t individual;
-    uint64_t lease;
-  };
-  std::deque<LeaseRecord> lease_order_;
-  uint64_t leases_made_ = 0;
-  std::map<std::string, WorkerState> workers_;
-  // Completions not yet acknowledged (acknowledge_on_receipt off): the
-  // identity that delivered each one's result.
-  std::map<uint64_t, std::string> delivered_;
-  std::set<std::string> strangers_;  // Unknown identities already logged.
-  bool ever_joined_ = false;
-  TimePoint idle_since_;   // When the last worker left (or the start).
-  TimePoint last_notice_;  // Of the idle notice.
-  DispatcherStats stats_;
+  LeaseScheduler scheduler_;
 };
 
 }  // namespace animat
