@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "common/base/clock.h"
@@ -114,7 +115,9 @@ class LeaseSchedulerTest : public ::testing::Test {
     options_.clock = &clock_;
     options_.heartbeat_ms = 100;
     options_.lease_ms = 1000;
-    options_.log = [this](const std::string& line) { log_.push_back(line); };
+    options_.log = [this](std::string_view line) {
+      log_.push_back(std::string(line));
+    };
     options_.idle_notice_ms = 0;
   }
   LeaseScheduler& Start() {
