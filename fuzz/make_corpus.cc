@@ -266,6 +266,32 @@ int Main(int argc, char** argv) {
     m.frames = {std::string("\x08\x02\x82\x01\x00", 5)};  // Version 2.
     put("other-version", {m});
   }
+
+  // scheduler_fuzzer: scripts of events (scheduler_fuzzer.cc): a byte for
+  // the event, one for the peer, then its arguments.
+  const std::string scheduler = "scheduler_fuzzer";
+  const auto script = [](std::initializer_list<int> bytes) {
+    std::string s;
+    for (const int b : bytes) s.push_back(static_cast<char>(b));
+    return s;
+  };
+  // Hello, credit 3, three valid results, time.
+  out.Put(scheduler, "serve", script({1, 0, 0, 7, 2, 0, 2, 3, 0, 1, 3,
+                                      3, 0, 2, 3, 3, 0, 3, 3, 4, 0, 10}));
+  // Two workers; one goes silent and its leases expire.
+  out.Put(scheduler, "expire", script({1, 0, 1, 7, 2,  0, 3, 1,  1, 0, 8, 2,
+                                       1, 3, 4, 0, 60, 4, 0, 60, 3, 1, 1, 3}));
+  // An outbox that fails, a goodbye, a result for another genome.
+  out.Put(scheduler, "faults", script({1, 2, 0, 9, 5, 2, 0, 2, 2, 1, 4, 0, 5,
+                                       5, 2, 0, 4, 0, 5, 6, 2, 1, 3, 2, 1, 0}));
+  // A frame: a credit message as the transport would decode it.
+  {
+    const std::string credit = protocol::Encode(Credit(2));
+    std::string frame = script({1, 1, 0, 3, 0, 1});
+    frame.push_back(static_cast<char>(credit.size()));
+    frame += credit;
+    out.Put(scheduler, "frame", frame + script({4, 0, 1}));
+  }
   return out.failed() ? 1 : 0;
 }
 

@@ -29,7 +29,8 @@ if [ "${1:-}" = "--seeds" ]; then
 fi
 
 seconds="${1:-30}"
-targets=(decode_fuzzer work_fuzzer results_fuzzer dispatcher_fuzzer)
+targets=(decode_fuzzer work_fuzzer results_fuzzer dispatcher_fuzzer
+  scheduler_fuzzer)
 mkdir -p "$build/artifacts"
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
