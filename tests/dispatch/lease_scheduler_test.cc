@@ -250,5 +250,59 @@ TEST_F(LeaseSchedulerTest, RefusalsSayWhyAndGreetNobody) {
   EXPECT_EQ(s.PeerName("c"), "an unknown peer");
 }
 
+TEST_F(LeaseSchedulerTest, ResultsAreAcknowledgedOnlyOnceRecordedWhenAsked) {
+  options_.acknowledge_on_receipt = false;
+  LeaseScheduler& s = Start();
+  s.Submit(1, GenomeOf(1));
+  s.Submit(2, GenomeOf(2));
+  From("a", Hello(1, 11));
+  From("a", Credit(2));
+  From("a", ResultFor(1, 1.0));
+  From("a", ResultFor(2, 2.0));
+  ASSERT_EQ(done_.size(), 2u);
+  EXPECT_TRUE(outbox_.Of("a", v1::Envelope::kAcknowledge).empty());
+  s.Acknowledge({2, 9});  // 9 was never completed here: nothing.
+  const std::vector<v1::Envelope> acks =
+      outbox_.Of("a", v1::Envelope::kAcknowledge);
+  ASSERT_EQ(acks.size(), 1u);
+  ASSERT_EQ(acks[0].acknowledge().individuals_size(), 1);
+  EXPECT_EQ(acks[0].acknowledge().individuals(0), 2u);
+  s.Acknowledge({2});  // Already acknowledged: nothing more.
+  EXPECT_EQ(outbox_.Of("a", v1::Envelope::kAcknowledge).size(), 1u);
+}
+
+TEST_F(LeaseSchedulerTest, CreditBeyondTheCapIsCappedAndSaidOnce) {
+  LeaseScheduler& s = Start();
+  for (uint64_t id = 1; id <= 20; ++id) s.Submit(id, GenomeOf(id));
+  From("a", Hello(1, 11));
+  From("a", Credit(1000));
+  // One thread: threads x kPrefetch x kCreditCapFactor.
+  const size_t cap = protocol::kPrefetch * protocol::kCreditCapFactor;
+  EXPECT_EQ(ItemsOf(outbox_.Of("a", v1::Envelope::kWork)).size(), cap);
+  EXPECT_EQ(s.stats().ignored, 1);
+}
+
+TEST_F(LeaseSchedulerTest, AGoodbyeHandsWorkBackWithoutCountingAnAttempt) {
+  LeaseScheduler& s = Start();
+  s.Submit(1, GenomeOf(1));
+  s.Submit(2, GenomeOf(2));
+  From("a", Hello(1, 11));
+  From("a", Credit(1));
+  v1::Envelope goodbye;
+  goodbye.mutable_goodbye()->set_reason("stopping");
+  goodbye.mutable_goodbye()->add_returned(1);
+  goodbye.mutable_goodbye()->add_returned(2);  // Not its lease: ignored.
+  From("a", goodbye);
+  EXPECT_EQ(s.workers(), 0u);
+  // Next in line again, not a suspect: a new worker gets both at once.
+  From("b", Hello(1, 12));
+  From("b", Credit(2));
+  EXPECT_EQ(ItemsOf(outbox_.Of("b", v1::Envelope::kWork)),
+            (std::vector<uint64_t>{1, 2}));
+  From("b", ResultFor(1, 1.0));
+  ASSERT_EQ(done_.size(), 1u);
+  EXPECT_EQ(done_[0].attempts, 0);
+}
+
 }  // namespace
 }  // namespace animat
