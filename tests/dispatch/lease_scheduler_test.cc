@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -55,7 +56,8 @@ class RecordingOutbox : public Outbox {
   std::string unreachable;
 };
 
-v1::Envelope Hello(int threads, uint32_t pid) {
+// `instance`: Hello.instance (0: none).
+v1::Envelope Hello(int threads, uint32_t pid, uint64_t instance = 0) {
   v1::Envelope envelope;
   envelope.set_protocol_version(protocol::kVersion);
   v1::Hello* hello = envelope.mutable_hello();
@@ -64,6 +66,7 @@ v1::Envelope Hello(int threads, uint32_t pid) {
   hello->set_threads(static_cast<uint32_t>(threads));
   hello->set_host("test-worker");
   hello->set_pid(pid);
+  hello->set_instance(instance);
   return envelope;
 }
 
@@ -140,6 +143,15 @@ class LeaseSchedulerTest : public ::testing::Test {
   ManualClock clock_;
   SchedulerOptions options_;
   RecordingOutbox outbox_;
+  // The log lines containing `part`.
+  int Logged(std::string_view part) const {
+    int n = 0;
+    for (const std::string& line : log_) {
+      n += line.find(part) != std::string::npos;
+    }
+    return n;
+  }
+
   std::vector<std::string> log_;
   std::vector<Completion> done_;
   std::unique_ptr<LeaseScheduler> scheduler_;
@@ -302,6 +314,147 @@ TEST_F(LeaseSchedulerTest, AGoodbyeHandsWorkBackWithoutCountingAnAttempt) {
   From("b", ResultFor(1, 1.0));
   ASSERT_EQ(done_.size(), 1u);
   EXPECT_EQ(done_[0].attempts, 0);
+}
+
+// On the manual clock the deadlines hold to the millisecond.
+
+TEST_F(LeaseSchedulerTest, ALeaseEndsOnceLeaseMsHavePassedAndNotBefore) {
+  options_.lease_ms = 200;  // Shorter than the liveness (300 ms).
+  LeaseScheduler& s = Start();
+  s.Submit(1, GenomeOf(1));
+  From("a", Hello(1, 11));
+  From("a", Credit(1));
+  ASSERT_EQ(ItemsOf(outbox_.Of("a", v1::Envelope::kWork)),
+            std::vector<uint64_t>{1});
+  Pass(milliseconds(200));
+  EXPECT_EQ(Logged("expired"), 0);
+  EXPECT_EQ(s.stats().requeued, 0);
+  Pass(milliseconds(1));
+  EXPECT_EQ(Logged("lease of individual 1 on test-worker:11 expired"), 1);
+  EXPECT_EQ(s.stats().requeued, 1);
+  EXPECT_EQ(s.workers(), 1u);  // Not silent for long enough.
+}
+
+TEST_F(LeaseSchedulerTest, AWorkerIsDroppedOnlyAfterThreeHeartbeatsOfSilence) {
+  LeaseScheduler& s = Start();
+  s.Submit(1, GenomeOf(1));
+  From("a", Hello(1, 11));
+  From("a", Credit(1));
+  // Any message is a sign of life: the silence starts again.
+  Pass(milliseconds(250));
+  From("a", Heartbeat());
+  Pass(milliseconds(protocol::kLiveness * 100));
+  EXPECT_EQ(s.workers(), 1u);
+  Pass(milliseconds(1));
+  EXPECT_EQ(s.workers(), 0u);
+  EXPECT_EQ(Logged("worker test-worker:11 silent for 300 ms; 1 leases back "
+                   "in the queue"),
+            1);
+  EXPECT_EQ(s.stats().requeued, 1);
+}
+
+TEST_F(LeaseSchedulerTest, AHeartbeatGoesOutAfterAnIntervalWithoutMessages) {
+  Start();
+  From("a", Hello(1, 11));  // Welcomed, now.
+  ASSERT_EQ(outbox_.Of("a", v1::Envelope::kWelcome).size(), 1u);
+  const auto heartbeats = [&] {
+    return outbox_.Of("a", v1::Envelope::kHeartbeat).size();
+  };
+  Pass(milliseconds(99));
+  EXPECT_EQ(heartbeats(), 0u);
+  Pass(milliseconds(1));
+  EXPECT_EQ(heartbeats(), 1u);
+  Pass(milliseconds(99));
+  EXPECT_EQ(heartbeats(), 1u);
+  Pass(milliseconds(1));
+  EXPECT_EQ(heartbeats(), 2u);
+}
+
+// A worker process that took its master for lost reconnects on a new
+// connection with the Hello.instance of its first: its old session ends
+// at once, and the work it held goes back without an attempt counted,
+// however often it happens. Another process that shares host:pid (another
+// instance) is another worker.
+TEST_F(LeaseSchedulerTest, AWorkerReconnectingUnderItsInstanceCostsNoAttempt) {
+  LeaseScheduler& s = Start();
+  s.Submit(1, GenomeOf(1));
+  constexpr uint64_t kInstance = 0x5eed5eed5eed5eedull;
+  std::string session;
+  for (int n = 1; n <= protocol::kMaxAttempts + 2; ++n) {
+    SCOPED_TRACE("session " + std::to_string(n));
+    session = "session-" + std::to_string(n);
+    From(session, Hello(1, 11, kInstance));
+    ASSERT_EQ(outbox_.Of(session, v1::Envelope::kWelcome).size(), 1u);
+    EXPECT_EQ(Logged("worker test-worker:11 reconnected; 1 leases of its old "
+                     "session back in the queue"),
+              n - 1);
+    From(session, Credit(1));
+    EXPECT_EQ(ItemsOf(outbox_.Of(session, v1::Envelope::kWork)),
+              std::vector<uint64_t>{1});
+    EXPECT_EQ(s.workers(), 1u);
+  }
+  From("other", Hello(1, 11, kInstance + 1));
+  EXPECT_EQ(s.workers(), 2u);
+  From(session, ResultFor(1, 4.0));
+  ASSERT_EQ(done_.size(), 1u);
+  EXPECT_EQ(done_[0].attempts, 0);
+  EXPECT_EQ(s.stats().isolated, 0);
+  EXPECT_EQ(Logged("silent"), 0);
+}
+
+// A suspect goes alone to a worker holding nothing else, so a genome that
+// kills its workers does not use up the attempts of the others. Each
+// worker here dies (falls silent) whenever it holds the suspect, and
+// answers everything else.
+TEST_F(LeaseSchedulerTest, ASuspectIsLeasedAloneSoItTakesNobodyDownWithIt) {
+  LeaseScheduler& s = Start();
+  constexpr uint64_t kSuspect = 1;
+  constexpr uint64_t kCompanion = 2;
+  s.Submit(kSuspect, GenomeOf(kSuspect));
+  s.Submit(kCompanion, GenomeOf(kCompanion));
+  for (int round = 1; round <= protocol::kMaxAttempts; ++round) {
+    SCOPED_TRACE("round " + std::to_string(round));
+    const std::string worker = "worker-" + std::to_string(round);
+    From(worker, Hello(1, static_cast<uint32_t>(100 + round)));
+    From(worker, Credit(2));
+    // Answers what it holds until it holds the suspect.
+    for (size_t answered = 0;;) {
+      const std::vector<uint64_t> held =
+          ItemsOf(outbox_.Of(worker, v1::Envelope::kWork));
+      if (std::count(held.begin(), held.end(), kSuspect) != 0) {
+        if (round > 1) {
+          EXPECT_EQ(held, std::vector<uint64_t>{kSuspect});
+        }
+        break;
+      }
+      ASSERT_LT(answered, held.size()) << "neither the suspect nor work";
+      for (; answered < held.size(); ++answered) {
+        From(worker, ResultFor(held[answered], 1.0));
+        From(worker, Credit(1));
+      }
+    }
+    Pass(milliseconds(protocol::kLiveness * 100 + 1));  // Dies.
+    EXPECT_EQ(s.workers(), 0u);
+  }
+  // Without an isolation the suspect is offered to workers again; the
+  // companion died once with it, in the first round, and no more.
+  From("last", Hello(1, 200));
+  From("last", Credit(2));
+  for (size_t answered = 0;; ++answered) {
+    const std::vector<uint64_t> held =
+        ItemsOf(outbox_.Of("last", v1::Envelope::kWork));
+    if (answered == held.size()) break;
+    From("last", ResultFor(held[answered], 1.0));
+    From("last", Credit(1));
+  }
+  EXPECT_EQ(s.pending(), 0u);
+  for (const Completion& c : done_) {
+    if (c.individual == kCompanion) {
+      EXPECT_EQ(c.attempts, 1);
+    } else {
+      EXPECT_EQ(c.attempts, protocol::kMaxAttempts);
+    }
+  }
 }
 
 }  // namespace
