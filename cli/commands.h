@@ -19,6 +19,7 @@ Command AddGrnCommand(CLI::App& app);
 Command AddSimulateCommand(CLI::App& app);
 Command AddSceneCommand(CLI::App& app);
 Command AddEvolveCommand(CLI::App& app);
+Command AddCampaignCommand(CLI::App& app);
 Command AddLineageCommand(CLI::App& app);
 Command AddAnalyzeCommand(CLI::App& app);
 Command AddClusterCommand(CLI::App& app);

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   commands["simulate"] = animat::cli::AddSimulateCommand(app);
   commands["scene"] = animat::cli::AddSceneCommand(app);
   commands["evolve"] = animat::cli::AddEvolveCommand(app);
+  commands["campaign"] = animat::cli::AddCampaignCommand(app);
   commands["lineage"] = animat::cli::AddLineageCommand(app);
   commands["analyze"] = animat::cli::AddAnalyzeCommand(app);
   commands["cluster"] = animat::cli::AddClusterCommand(app);

@@ -25,17 +25,6 @@ std::atomic<bool> g_stop{false};
 
 void OnStopSignal(int) { g_stop.store(true); }
 
-// From here on SIGTERM and SIGINT stop the run cleanly (at the latest
-// after its first step), whenever they come.
-const std::atomic<bool>& InstallStopHandlers() {
-  struct sigaction action = {};
-  action.sa_handler = OnStopSignal;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGTERM, &action, nullptr);
-  sigaction(SIGINT, &action, nullptr);
-  return g_stop;
-}
-
 bool Exists(const std::string& path) { return access(path.c_str(), F_OK) == 0; }
 
 // What can be said of the request without reading any file; a mistyped
@@ -77,7 +66,17 @@ Result<std::optional<RunSettings>> ReadSettings(const SessionOptions& o) {
   return std::optional<RunSettings>(std::move(read).value());
 }
 
-// The dispatcher's options, the keys read and the endpoint checked.
+}  // namespace
+
+const std::atomic<bool>& InstallStopHandlers() {
+  struct sigaction action = {};
+  action.sa_handler = OnStopSignal;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGTERM, &action, nullptr);
+  sigaction(SIGINT, &action, nullptr);
+  return g_stop;
+}
+
 Result<DispatcherOptions> ListenOptions(const SessionOptions& o) {
   Status endpoint =
       protocol::CheckEndpoint(o.bind, protocol::EndpointUse::kBind);
@@ -104,6 +103,8 @@ Result<DispatcherOptions> ListenOptions(const SessionOptions& o) {
   if (!status.ok()) return status;
   return options;
 }
+
+namespace {
 
 // "To extend it, ...": the command that runs 10 generations more.
 std::string ExtendHint(const SessionOptions& o, int made) {
@@ -146,6 +147,8 @@ bool NothingToRun(const RunPlan& plan) {
   return plan.run_id != 0 && plan.state == "finished" && !plan.update_config;
 }
 
+}  // namespace
+
 Status StartLocalWorkers(const SessionOptions& o, const Dispatcher& dispatcher,
                          LocalWorkers* workers) {
   if (o.local_workers <= 0) return Status::Ok();
@@ -161,6 +164,8 @@ Status StartLocalWorkers(const SessionOptions& o, const Dispatcher& dispatcher,
         " local workers (their log: " + o.worker_log + ")");
   return Status::Ok();
 }
+
+namespace {
 
 // Serves the run until it ends or a signal stops it, then says what next.
 Status Serve(EvolutionRun* run, Dispatcher* dispatcher, const SessionOptions& o,

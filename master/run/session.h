@@ -12,6 +12,7 @@
 #ifndef ANIMAT_MASTER_RUN_SESSION_H_
 #define ANIMAT_MASTER_RUN_SESSION_H_
 
+#include <atomic>
 #include <functional>
 #include <optional>
 #include <string>
@@ -21,7 +22,9 @@
 #include "common/base/log.h"
 #include "common/base/status.h"
 #include "common/protocol/protocol.h"
+#include "master/dispatch/dispatcher.h"
 #include "master/run/evolution_run.h"
+#include "master/run/local_workers.h"
 
 namespace animat {
 
@@ -81,6 +84,21 @@ struct SessionOptions {
 // `words` as one POSIX shell command line, each word quoted when it needs
 // to be ("animat-master --db 'my run.db'"), for the hints a session gives.
 std::string CommandLine(const std::vector<std::string>& words);
+
+// From here on SIGTERM and SIGINT set the flag returned (the process's
+// one), so that whoever serves a run stops it cleanly, whenever they come.
+const std::atomic<bool>& InstallStopHandlers();
+
+// The dispatcher's options for `o` (bind, heartbeat, keys, insecure, the
+// logs; results acknowledged once recorded), the key files read and the
+// endpoint checked; errors say what to give instead.
+Result<DispatcherOptions> ListenOptions(const SessionOptions& o);
+
+// Starts o.local_workers animat-worker processes (beside this program, one
+// thread each, exiting when the run is over) connecting to `dispatcher`,
+// their output appended to o.worker_log; none when it is 0.
+Status StartLocalWorkers(const SessionOptions& o, const Dispatcher& dispatcher,
+                         LocalWorkers* workers);
 
 // Runs the session to the run's end, or until SIGTERM or SIGINT (then
 // what came in is committed and the store is left resumable). Errors say
