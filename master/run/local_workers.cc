@@ -145,6 +145,10 @@ std::vector<std::string> WorkerArgv(const WorkerOptions& options) {
   }
   if (options.null_evaluation) argv.push_back("--null-evaluation");
   if (options.exit_when_done) argv.push_back("--exit-when-done");
+  if (options.idle_timeout_s > 0) {
+    argv.push_back("--idle-timeout");
+    argv.push_back(std::to_string(options.idle_timeout_s));
+  }
   return argv;
 }
 

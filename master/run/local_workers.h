@@ -78,6 +78,9 @@ struct WorkerOptions {
   int heartbeat_ms = 0;  // Until the master's welcome; 0: the default.
   bool null_evaluation = false;
   bool exit_when_done = false;  // Exit when the master's run is over.
+  // Exit after this many seconds without a master (0: never), so that
+  // workers outlive a master killed with SIGKILL only so long.
+  int idle_timeout_s = 0;
   // Where each worker's standard output and error are appended ("": the
   // parent's).
   std::string log_path;

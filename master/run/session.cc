@@ -157,6 +157,8 @@ Status StartLocalWorkers(const SessionOptions& o, const Dispatcher& dispatcher,
   worker.endpoint = dispatcher.endpoint();
   worker.threads = 1;
   worker.exit_when_done = true;
+  // A master killed with SIGKILL cannot stop them: they go by themselves.
+  worker.idle_timeout_s = kLocalWorkerIdleTimeoutS;
   worker.log_path = o.worker_log;
   Status status = workers->Start(o.local_workers, worker);
   if (!status.ok()) return status;

@@ -94,8 +94,13 @@ const std::atomic<bool>& InstallStopHandlers();
 // endpoint checked; errors say what to give instead.
 Result<DispatcherOptions> ListenOptions(const SessionOptions& o);
 
+// A local worker without a master for this long (its master was killed
+// with SIGKILL) exits, seconds.
+inline constexpr int kLocalWorkerIdleTimeoutS = 60;
+
 // Starts o.local_workers animat-worker processes (beside this program, one
-// thread each, exiting when the run is over) connecting to `dispatcher`,
+// thread each, exiting when the run is over, or kLocalWorkerIdleTimeoutS
+// after their master vanished) connecting to `dispatcher`,
 // their output appended to o.worker_log; none when it is 0.
 Status StartLocalWorkers(const SessionOptions& o, const Dispatcher& dispatcher,
                          LocalWorkers* workers);

@@ -163,11 +163,12 @@ TEST_F(LocalWorkersTest, AWorkersCommandLineSaysWhatItsOptionsSay) {
   options.heartbeat_ms = 100;
   options.null_evaluation = true;
   options.exit_when_done = true;
+  options.idle_timeout_s = 60;
   EXPECT_EQ(WorkerArgv(options),
             (std::vector<std::string>{
                 "/opt/animat-worker", "--connect", "tcp://10.0.0.1:5555",
                 "--threads", "4", "--heartbeat-ms", "100", "--null-evaluation",
-                "--exit-when-done"}));
+                "--exit-when-done", "--idle-timeout", "60"}));
 }
 
 TEST_F(LocalWorkersTest, WorkersThatExitAreReportedAndDropped) {

@@ -1,0 +1,126 @@
+// The campaign file expanded into runs (master/campaign/campaign_file.h):
+// names, merge order, grids, seeds, and errors that name the entry.
+#include "master/campaign/campaign_file.h"
+
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "common/io/proto_file.h"
+
+namespace animat {
+namespace {
+
+v1::Campaign Parse(const std::string& text) {
+  v1::Campaign campaign;
+  const Status status = ParseProto(text, ProtoFormat::kText, &campaign);
+  EXPECT_TRUE(status.ok()) << status.ToString();
+  return campaign;
+}
+
+std::vector<std::string> Names(const std::vector<CampaignRun>& runs) {
+  std::vector<std::string> names;
+  for (const CampaignRun& run : runs) names.push_back(run.name);
+  return names;
+}
+
+// The error of expanding `text`, or "" when it expands.
+std::string ErrorOf(const std::string& text) {
+  Result<std::vector<CampaignRun>> runs = ExpandCampaign(Parse(text), "");
+  return runs.ok() ? "" : runs.status().message();
+}
+
+TEST(CampaignFileTest, AGridTimesSeedsGivesEveryCombinationInOrder) {
+  Result<std::vector<CampaignRun>> runs = ExpandCampaign(Parse(R"(
+    runs {
+      name: "paper"
+      set: "evolution { population: 30 generations: 5 }"
+      axes { values { label: "dn0.1" set: "model { physics { drag_normal: 0.1 } }" }
+             values { label: "dn1" set: "model { physics { drag_normal: 1 } }" } }
+      axes { values { label: "all" set: "model { physics { contact_rule: ALL } }" }
+             values { label: "" } }
+      seeds: [1, 2]
+    })"),
+                                                         "");
+  ASSERT_TRUE(runs.ok()) << runs.status().ToString();
+  EXPECT_EQ(Names(*runs),
+            (std::vector<std::string>{
+                "paper-dn0.1-all-seed1", "paper-dn0.1-all-seed2",
+                "paper-dn0.1-seed1", "paper-dn0.1-seed2", "paper-dn1-all-seed1",
+                "paper-dn1-all-seed2", "paper-dn1-seed1", "paper-dn1-seed2"}));
+  const CampaignRun& run = (*runs)[5];  // paper-dn1-all-seed2
+  EXPECT_EQ(run.settings.evolution.seed, 2u);
+  EXPECT_EQ(run.settings.evolution.population, 30);
+  EXPECT_EQ(run.settings.evolution.generations, 5);
+  EXPECT_EQ(run.config.model().physics().drag_normal(), 1.0);
+  EXPECT_EQ(run.config.model().physics().contact_rule(),
+            v1::PhysicsConfig::ALL);
+  EXPECT_FALSE((*runs)[6].config.model().physics().has_contact_rule());
+}
+
+TEST(CampaignFileTest, LaterFieldsOverrideEarlierOnesAndTheFileComesFirst) {
+  const std::string dir =
+      ::testing::TempDir() + "/campaign-file-" + std::to_string(getpid());
+  std::filesystem::create_directories(dir);
+  ASSERT_TRUE(WriteFile(dir + "/base.txtpb",
+                        "evolution { seed: 7 population: 40 elite: 3 }\n")
+                  .ok());
+  ASSERT_TRUE(WriteFile(dir + "/c.txtpb", R"(
+    runs { name: "a" config: "base.txtpb" set: "evolution { population: 50 }"
+           axes { values { label: "x" set: "evolution { population: 60 }" } } }
+    runs { name: "b" config: "base.txtpb" })")
+                  .ok());
+  Result<std::vector<CampaignRun>> runs = ReadCampaignFile(dir + "/c.txtpb");
+  std::filesystem::remove_all(dir);
+  ASSERT_TRUE(runs.ok()) << runs.status().ToString();
+  ASSERT_EQ(Names(*runs), (std::vector<std::string>{"a-x", "b"}));
+  EXPECT_EQ((*runs)[0].settings.evolution.population, 60);
+  EXPECT_EQ((*runs)[0].settings.evolution.elite, 3);
+  EXPECT_EQ((*runs)[0].settings.evolution.seed, 7u);  // No seeds: the file's.
+  EXPECT_EQ((*runs)[1].settings.evolution.population, 40);
+}
+
+TEST(CampaignFileTest, MistakesAreRefusedNamingTheEntry) {
+  EXPECT_EQ(ErrorOf(""), "the campaign has no runs (runs { ... })");
+  EXPECT_EQ(ErrorOf(R"(runs { name: "a" seeds: [1, 1] })"),
+            "two runs are named a-seed1; each run needs its own name (store)");
+  EXPECT_NE(ErrorOf(R"(runs { name: "../up" })").find("runs[0].name: "),
+            std::string::npos);
+  EXPECT_NE(
+      ErrorOf(
+          R"(runs { name: "a" } runs { name: "b" set: "evolution { populaton: 3 }" })")
+          .find("runs[1].set: "),
+      std::string::npos);
+  EXPECT_NE(ErrorOf(R"(runs { name: "a" axes { } })")
+                .find("runs[0].axes[0]: an axis needs values"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf(R"(runs { name: "a" axes { values { label: "a b" } } })")
+                .find("runs[0].axes[0].values[0].label: "),
+            std::string::npos);
+  EXPECT_NE(ErrorOf(R"(runs { name: "a" set: "evolution { population: -5 }" })")
+                .find("runs[0] (run a): "),
+            std::string::npos);
+  EXPECT_NE(ErrorOf(R"(runs { config: "no-such-file.txtpb" name: "a" })")
+                .find("runs[0].config: "),
+            std::string::npos);
+  EXPECT_NE(ErrorOf(R"(runs { })").find("runs[0]: its runs have no name"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf(R"(runs { name: "big" seeds: [)" +
+                    [] {
+                      std::string seeds;
+                      for (int s = 1; s <= 1001; ++s) {
+                        if (s > 1) seeds += ',';
+                        seeds += std::to_string(s);
+                      }
+                      return seeds;
+                    }() +
+                    "] }")
+                .find("more than 1000 runs"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace animat

@@ -1,0 +1,131 @@
+// `animat campaign` end to end: several runs served at once by one master
+// and one pool of local workers give, each, the store of the same run made
+// alone, even when the campaign is killed with SIGKILL and started again;
+// a finished campaign changes nothing, runs added to its file run alone,
+// and `animat campaign status` says where each run stands.
+#include <csignal>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tests/master/master_harness.h"
+
+namespace animat::testing {
+namespace {
+
+class CampaignCliTest : public MasterTest {
+ protected:
+  // animat campaign on the test's campaign file and folder.
+  std::unique_ptr<ChildProcess> StartCampaign() {
+    return StartAnimat({"campaign", "--campaign", Path("campaign.txtpb"),
+                        "--dir", Path("runs"), "--workers", "2"});
+  }
+  // Runs the campaign command to its end; its output.
+  std::string CampaignToEnd() {
+    std::unique_ptr<ChildProcess> campaign = StartCampaign();
+    if (!AwaitExit(*campaign, kRunWait, "the campaign")) return "";
+    EXPECT_EQ(campaign->exit_code(), 0) << campaign->output();
+    return campaign->output();
+  }
+  // The store of `run` made alone by animat-master with one worker.
+  StoreContents Alone(const std::string& name, const TestRun& run) {
+    const std::string db = Path("alone-" + name + ".db");
+    RunToEnd(WriteConfig("alone-" + name + ".txtpb", run), db, 1);
+    return ReadStoreContents(db);
+  }
+  std::string Store(const std::string& name) const {
+    return Path("runs/" + name + ".db");
+  }
+};
+
+TEST_F(CampaignCliTest, KilledAndStartedAgainEachRunIsTheRunMadeAlone) {
+  TestRun base;
+  base.generations = 6;
+  base.motion_steps = kMotionStepsForSlowGenerations;
+  WriteConfig("base.txtpb", base);
+  ASSERT_TRUE(WriteFile(Path("campaign.txtpb"),
+                        "runs { name: \"t\" config: \"base.txtpb\" "
+                        "seeds: [3, 10] }\n"
+                        "runs { name: \"small\" config: \"base.txtpb\" "
+                        "set: \"evolution { population: 16 }\" }\n")
+                  .ok());
+  std::map<std::string, TestRun> runs;
+  runs["t-seed3"] = base;
+  runs["t-seed10"] = base;
+  runs["t-seed10"].seed = 10;
+  runs["small"] = base;
+  runs["small"].population = 16;
+
+  std::unique_ptr<ChildProcess> campaign = StartCampaign();
+  ASSERT_TRUE(AwaitStore(
+      Store("t-seed3"),
+      [](const Progress& p) { return p.complete_generations >= 2; }, *campaign))
+      << campaign->output();
+  ASSERT_TRUE(campaign->Signal(SIGKILL));
+  ASSERT_TRUE(AwaitExit(*campaign, kStepWait, "SIGKILL"));
+  EXPECT_FALSE(ReadProgress(Store("t-seed3")).finished);
+
+  const std::string resumed = CampaignToEnd();
+  EXPECT_NE(resumed.find("finished: 3 runs in"), std::string::npos) << resumed;
+  for (const auto& [name, run] : runs) {
+    SCOPED_TRACE(name);
+    ExpectSameContents(Alone(name, run), ReadStoreContents(Store(name)));
+  }
+
+  // Finished: said, and nothing changes.
+  const StoreContents before = ReadStoreContents(Store("t-seed3"));
+  const std::string again = CampaignToEnd();
+  EXPECT_NE(again.find("the campaign is finished: its 3 runs"),
+            std::string::npos)
+      << again;
+  ExpectSameContents(before, ReadStoreContents(Store("t-seed3")));
+
+  // A run added to the file runs alone.
+  ASSERT_TRUE(WriteFile(Path("campaign.txtpb"),
+                        "runs { name: \"t\" config: \"base.txtpb\" "
+                        "seeds: [3, 10, 4] }\n"
+                        "runs { name: \"small\" config: \"base.txtpb\" "
+                        "set: \"evolution { population: 16 }\" }\n")
+                  .ok());
+  const std::string added = CampaignToEnd();
+  EXPECT_NE(added.find("1 of 4 runs to serve (3 finished)"), std::string::npos)
+      << added;
+  EXPECT_TRUE(ReadProgress(Store("t-seed4")).finished);
+  ExpectSameContents(before, ReadStoreContents(Store("t-seed3")));
+
+  std::unique_ptr<ChildProcess> status =
+      StartAnimat({"campaign", "status", "--dir", Path("runs"), "--campaign",
+                   Path("campaign.txtpb")});
+  ASSERT_TRUE(AwaitExit(*status, kStepWait, "campaign status"));
+  EXPECT_EQ(status->exit_code(), 0) << status->output();
+  for (const char* name : {"t-seed3", "t-seed10", "t-seed4", "small"}) {
+    EXPECT_NE(status->output().find(name), std::string::npos)
+        << status->output();
+  }
+  EXPECT_NE(status->output().find("6/6"), std::string::npos)
+      << status->output();
+  EXPECT_NE(status->output().find("4 of 4 runs finished"), std::string::npos)
+      << status->output();
+}
+
+TEST_F(CampaignCliTest, RunsOfDifferentModelsAreRefusedForNowSayingWhich) {
+  TestRun base;
+  WriteConfig("base.txtpb", base);
+  ASSERT_TRUE(WriteFile(Path("campaign.txtpb"),
+                        "runs { config: \"base.txtpb\" axes { "
+                        "values { label: \"dn1\" } "
+                        "values { label: \"dn10\" set: \"model { physics { "
+                        "drag_normal: 10 } }\" } } }\n")
+                  .ok());
+  std::unique_ptr<ChildProcess> campaign = StartCampaign();
+  ASSERT_TRUE(AwaitExit(*campaign, kStepWait, "the campaign"));
+  EXPECT_EQ(campaign->exit_code(), 1);
+  EXPECT_NE(campaign->output().find("runs dn1 and dn10 have different model "
+                                    "configurations"),
+            std::string::npos)
+      << campaign->output();
+}
+
+}  // namespace
+}  // namespace animat::testing
