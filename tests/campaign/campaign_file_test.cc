@@ -83,6 +83,18 @@ TEST(CampaignFileTest, LaterFieldsOverrideEarlierOnesAndTheFileComesFirst) {
   EXPECT_EQ((*runs)[1].settings.evolution.population, 40);
 }
 
+TEST(CampaignFileTest, TheExampleCampaignExpandsAsDocumented) {
+  Result<std::vector<CampaignRun>> runs = ReadCampaignFile(
+      std::string(ANIMAT_SOURCE_DIR) + "/configs/campaigns/tournament.txtpb");
+  ASSERT_TRUE(runs.ok()) << runs.status().ToString();
+  ASSERT_EQ(runs->size(), 12u);
+  EXPECT_EQ(runs->front().name, "paper-t3-seed1");
+  EXPECT_EQ(runs->back().name, "paper-t5-seed6");
+  EXPECT_EQ(runs->back().settings.evolution.tournament_size, 5);
+  EXPECT_EQ(runs->back().settings.evolution.population, 300);  // The paper's.
+  EXPECT_EQ(runs->back().config.model().physics().drag_normal(), 0.1);
+}
+
 TEST(CampaignFileTest, MistakesAreRefusedNamingTheEntry) {
   EXPECT_EQ(ErrorOf(""), "the campaign has no runs (runs { ... })");
   EXPECT_EQ(ErrorOf(R"(runs { name: "a" seeds: [1, 1] })"),

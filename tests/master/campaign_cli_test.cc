@@ -109,6 +109,40 @@ TEST_F(CampaignCliTest, KilledAndStartedAgainEachRunIsTheRunMadeAlone) {
       << status->output();
 }
 
+// animat-master --campaign serves workers started elsewhere (here, on the
+// test's endpoint) as it serves one run's.
+TEST_F(CampaignCliTest, AnimatMasterServesACampaignToWorkersItDidNotStart) {
+  TestRun base;
+  WriteConfig("base.txtpb", base);
+  ASSERT_TRUE(WriteFile(Path("campaign.txtpb"),
+                        "runs { name: \"m\" config: \"base.txtpb\" "
+                        "seeds: [3, 10] }\n")
+                  .ok());
+  std::unique_ptr<ChildProcess> master = StartMaster(
+      {"--campaign", Path("campaign.txtpb"), "--dir", Path("runs")});
+  const auto workers = StartWorkers(2);
+  ASSERT_TRUE(AwaitExit(*master, kRunWait, "the campaign's master"));
+  EXPECT_EQ(master->exit_code(), 0) << master->output();
+  EXPECT_NE(master->output().find("finished: 2 runs in"), std::string::npos)
+      << master->output();
+  TestRun seed10 = base;
+  seed10.seed = 10;
+  ExpectSameContents(Alone("m-seed10", seed10),
+                     ReadStoreContents(Store("m-seed10")));
+
+  // --campaign goes with --dir, and not with one run's options.
+  for (const std::vector<std::string>& args :
+       std::vector<std::vector<std::string>>{
+           {"--campaign", Path("campaign.txtpb")},
+           {"--campaign", Path("campaign.txtpb"), "--dir", Path("runs"), "--db",
+            Path("x.db")},
+           {"--bind", Endpoint()}}) {
+    std::unique_ptr<ChildProcess> wrong = StartMaster(args);
+    ASSERT_TRUE(AwaitExit(*wrong, kStepWait, "a usage error"));
+    EXPECT_EQ(wrong->exit_code(), 2) << wrong->output();
+  }
+}
+
 TEST_F(CampaignCliTest, RunsOfDifferentModelsAreRefusedForNowSayingWhich) {
   TestRun base;
   WriteConfig("base.txtpb", base);
