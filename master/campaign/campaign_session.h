@@ -36,7 +36,8 @@ struct CampaignOptions {
   // Where and how workers connect, the local workers and their log, the
   // log sinks, the outcome line and the resume command, as for a lone run
   // (session.h). Its config_path, db_path, choice, force, generations and
-  // progress are not used.
+  // progress are not used. The log sinks are called from several threads
+  // (the runs').
   SessionOptions session;
   // After each generation of each run (from that run's thread): the run's
   // name and its report.
