@@ -185,6 +185,18 @@ int Main(int argc, char** argv) {
   }
   out.Put(work, "work-all", protocol::Encode(Work(all, config_hash)));
   out.Put(work, "welcome-default", protocol::Encode(Welcome(config)));
+  {
+    // A Work that carries its configuration (a campaign's other model).
+    v1::Config other = config;
+    other.mutable_physics()->set_drag_normal(10);
+    v1::Envelope carried =
+        Work({genomes[0].second}, protocol::ConfigHash(other));
+    *carried.mutable_work()->mutable_config() = other;
+    out.Put(work, "work-carried-config", protocol::Encode(carried));
+    // The same under a hash it does not have.
+    carried.mutable_work()->set_config_hash(protocol::ConfigHash(other) + 1);
+    out.Put(work, "work-carried-config-wrong-hash", protocol::Encode(carried));
+  }
   out.Put(work, "welcome-partial", protocol::Encode(Welcome(partial)));
 
   // results_fuzzer: every status, and some a master must refuse.

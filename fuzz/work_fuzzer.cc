@@ -2,8 +2,9 @@
 // message's items go through GenomeFromProto, as on the worker's pool
 // threads, and a valid genome is built into its network and checked for
 // viability (the first steps of an evaluation; the simulation itself is
-// too slow to fuzz). A Welcome's configuration goes through
-// ConfigFromProto and ConfigHash, as in the worker's session.
+// too slow to fuzz). A Welcome's configuration, and one a Work carries, go
+// into the worker's ConfigCache (its hash and ConfigFromProto checked), as
+// in the worker's session.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -15,6 +16,7 @@
 #include "common/protocol/genome_wire.h"
 #include "common/protocol/protocol.h"
 #include "fuzz/fuzz_common.h"
+#include "worker/config_cache.h"
 
 namespace {
 
@@ -34,15 +36,22 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   Result<v1::Envelope> envelope = protocol::Decode(
       std::string_view(reinterpret_cast<const char*>(data), size));
   if (!envelope.ok()) return 0;
+  ConfigCache configs;
   if (envelope->has_welcome()) {
     const v1::Welcome& welcome = envelope->welcome();
-    ModelConfig config;
-    const Status status = ConfigFromProto(welcome.config(), &config);
-    if (!status.ok() && status.message().empty()) std::abort();
-    (void)protocol::ConfigHash(welcome.config());
+    const auto kept = configs.Put(welcome.config(), welcome.config_hash());
+    if (!kept.ok() && kept.status().message().empty()) std::abort();
     return 0;
   }
   if (!envelope->has_work()) return 0;
+  if (envelope->work().has_config()) {
+    const auto kept =
+        configs.Put(envelope->work().config(), envelope->work().config_hash());
+    if (!kept.ok() && kept.status().message().empty()) std::abort();
+    if (kept.ok() && configs.Get(envelope->work().config_hash()) == nullptr) {
+      std::abort();
+    }
+  }
   const GrnParams params;
   for (const v1::WorkItem& item : envelope->work().items()) {
     Result<Genome> genome = GenomeFromProto(item.genome());

@@ -55,9 +55,8 @@ v1::WorkResult NotEvaluated(const v1::WorkItem& item) {
 
 }  // namespace
 
-EvaluationPool::EvaluationPool(int threads, ModelConfig config,
-                               bool null_evaluation)
-    : config_(std::move(config)), null_evaluation_(null_evaluation) {
+EvaluationPool::EvaluationPool(int threads, bool null_evaluation)
+    : null_evaluation_(null_evaluation) {
   wakeup_fd_ = eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
   if (!null_evaluation_) {
     for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { Loop(); });
@@ -75,14 +74,15 @@ EvaluationPool::~EvaluationPool() {
   if (wakeup_fd_ >= 0) close(wakeup_fd_);
 }
 
-void EvaluationPool::Submit(v1::WorkItem item) {
+void EvaluationPool::Submit(v1::WorkItem item,
+                            std::shared_ptr<const ModelConfig> config) {
   if (null_evaluation_) {
     Finish(NotEvaluated(item), /*was_running=*/false);
     return;
   }
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    queue_.push_back(std::move(item));
+    queue_.emplace_back(std::move(item), std::move(config));
   }
   ready_.notify_one();
 }
@@ -90,15 +90,17 @@ void EvaluationPool::Submit(v1::WorkItem item) {
 void EvaluationPool::Loop() {
   for (;;) {
     v1::WorkItem item;
+    std::shared_ptr<const ModelConfig> config;
     {
       std::unique_lock<std::mutex> lock(mutex_);
       ready_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
       if (stopping_) return;
-      item = std::move(queue_.front());
+      item = std::move(queue_.front().first);
+      config = std::move(queue_.front().second);
       queue_.pop_front();
       ++running_;
     }
-    Finish(EvaluateItem(item, config_), /*was_running=*/true);
+    Finish(EvaluateItem(item, *config), /*was_running=*/true);
   }
 }
 
@@ -127,7 +129,7 @@ std::vector<v1::WorkResult> EvaluationPool::TakeFinished() {
 std::vector<uint64_t> EvaluationPool::Abandon() {
   std::lock_guard<std::mutex> lock(mutex_);
   std::vector<uint64_t> ids;
-  for (const v1::WorkItem& item : queue_) ids.push_back(item.individual());
+  for (const auto& [item, config] : queue_) ids.push_back(item.individual());
   queue_.clear();
   return ids;
 }

@@ -12,8 +12,10 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <mutex>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "animat/v1/protocol.pb.h"
@@ -32,15 +34,16 @@ class EvaluationPool {
  public:
   // `threads` >= 1. With `null_evaluation` nothing is simulated: every item
   // finishes at once as NOT_EVALUATED (dispatch benchmarks).
-  EvaluationPool(int threads, ModelConfig config, bool null_evaluation);
+  EvaluationPool(int threads, bool null_evaluation);
   // Finishes the evaluations under way, drops queued ones, joins.
   ~EvaluationPool();
   EvaluationPool(const EvaluationPool&) = delete;
   EvaluationPool& operator=(const EvaluationPool&) = delete;
 
-  // Queues an item. Its genome is validated on the pool thread; an invalid
-  // one finishes as INVALID_GENOME with the reason.
-  void Submit(v1::WorkItem item);
+  // Queues an item, to be evaluated under `config` (not null). Its genome
+  // is validated on the pool thread; an invalid one finishes as
+  // INVALID_GENOME with the reason.
+  void Submit(v1::WorkItem item, std::shared_ptr<const ModelConfig> config);
 
   // Results finished since the last call, in finishing order.
   std::vector<v1::WorkResult> TakeFinished();
@@ -60,12 +63,12 @@ class EvaluationPool {
   void Loop();
   void Finish(v1::WorkResult result, bool was_running);
 
-  const ModelConfig config_;
   const bool null_evaluation_;
   int wakeup_fd_ = -1;
   mutable std::mutex mutex_;
   std::condition_variable ready_;
-  std::deque<v1::WorkItem> queue_;
+  std::deque<std::pair<v1::WorkItem, std::shared_ptr<const ModelConfig>>>
+      queue_;
   std::vector<v1::WorkResult> finished_;
   int running_ = 0;
   bool stopping_ = false;

@@ -190,24 +190,20 @@ std::optional<Worker::SessionEnd> Worker::Session::Handle(
 }
 
 void Worker::Session::Welcomed(const v1::Welcome& welcome) {
-  ModelConfig config;
-  Status status = ConfigFromProto(welcome.config(), &config);
-  if (!status.ok() ||
-      protocol::ConfigHash(welcome.config()) != welcome.config_hash()) {
-    options_.log(
-        "ignored a welcome with a bad configuration: " +
-        (status.ok() ? std::string("hash mismatch") : status.message()));
+  Result<std::shared_ptr<const ModelConfig>> config =
+      worker_.configs_.Put(welcome.config(), welcome.config_hash());
+  if (!config.ok()) {
+    options_.log("ignored a welcome with a bad configuration: " +
+                 config.status().message());
     return;
   }
   welcomed_ = true;
-  config_hash_ = welcome.config_hash();
   // In [kMinHeartbeatMs, kMaxHeartbeatMs] (Decode checked it): kLiveness
   // times it fits an int.
   heartbeat_ms_ = static_cast<int>(welcome.heartbeat_ms());
-  if (!pool() || worker_.pool_config_hash_ != config_hash_) {
-    pool() = std::make_unique<EvaluationPool>(options_.threads, config,
+  if (!pool()) {
+    pool() = std::make_unique<EvaluationPool>(options_.threads,
                                               options_.null_evaluation);
-    worker_.pool_config_hash_ = config_hash_;
   }
   options_.log("welcomed by " + options_.endpoint + " (" +
                std::to_string(options_.threads) + " threads)");
@@ -235,11 +231,42 @@ void Worker::Session::SendUnacknowledged() {
   if (results.results().results_size() > 0) Send(results);
 }
 
+// The configuration `work` is to be evaluated under: the one it carries
+// (checked and kept), or one kept before; an error saying why when
+// neither.
+Result<std::shared_ptr<const ModelConfig>> Worker::Session::ConfigOf(
+    const v1::Work& work) {
+  if (work.has_config()) {
+    return worker_.configs_.Put(work.config(), work.config_hash());
+  }
+  std::shared_ptr<const ModelConfig> kept =
+      worker_.configs_.Get(work.config_hash());
+  if (kept) return kept;
+  char hash[17];
+  std::snprintf(hash, sizeof(hash), "%016llx",
+                static_cast<unsigned long long>(work.config_hash()));
+  return Status::NotFound(std::string("configuration ") + hash +
+                          " was never given to this worker, or forgotten");
+}
+
 void Worker::Session::Accept(const v1::Work& work) {
-  if (!welcomed_ || work.config_hash() != config_hash_) {
-    options_.log("ignored work for configuration " +
-                 std::to_string(work.config_hash()) +
-                 (welcomed_ ? "" : " before a welcome"));
+  if (!welcomed_) {
+    options_.log("ignored work before a welcome");
+    return;
+  }
+  Result<std::shared_ptr<const ModelConfig>> config = ConfigOf(work);
+  if (!config.ok()) {
+    // Left out, their credit given back: the master's count of this
+    // worker's credit stays right, and its leases expire.
+    options_.log("ignored " + std::to_string(work.items_size()) +
+                 " work items from the master: " + config.status().message());
+    if (stopping_) {
+      for (const v1::WorkItem& item : work.items()) {
+        returned_.push_back(item.individual());  // Handed back.
+      }
+    } else if (work.items_size() > 0) {
+      SendCredit(work.items_size());
+    }
     return;
   }
   // An item out of the limits is left out, its credit given back: the
@@ -255,7 +282,7 @@ void Worker::Session::Accept(const v1::Work& work) {
     } else if (stopping_) {
       returned_.push_back(item.individual());  // Handed back.
     } else {
-      pool()->Submit(item);
+      pool()->Submit(item, *config);
     }
   }
   if (left_out > 0 && !stopping_) SendCredit(left_out);

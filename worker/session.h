@@ -58,6 +58,7 @@ class Worker::Session {
   // The results the last master did not acknowledge, to this one.
   void SendUnacknowledged();
   void Accept(const v1::Work& work);
+  Result<std::shared_ptr<const ModelConfig>> ConfigOf(const v1::Work& work);
   void CollectFinished();
   // Results finished since the last call, with the credit they earn.
   void SendResults();
@@ -83,7 +84,6 @@ class Worker::Session {
   Steady::time_point last_sent_;
   int heartbeat_ms_;
   bool welcomed_ = false;
-  uint64_t config_hash_ = 0;
   bool stopping_ = false;
   std::vector<uint64_t> returned_;  // Handed back, for the goodbye.
   int uncredited_ = 0;  // Results finished before this session's welcome.

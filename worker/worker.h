@@ -19,6 +19,7 @@
 #include "animat/v1/protocol.pb.h"
 #include "common/base/log.h"
 #include "common/protocol/protocol.h"
+#include "worker/config_cache.h"
 
 namespace zmq {
 class context_t;
@@ -107,7 +108,8 @@ class Worker {
   // Survives sessions, so evaluations under way when a master vanished
   // finish and are offered to the next one.
   std::unique_ptr<EvaluationPool> pool_;
-  uint64_t pool_config_hash_ = 0;
+  // The configurations masters gave (survives sessions too).
+  ConfigCache configs_;
   // Finished results not yet sent (waiting for a welcome).
   std::vector<v1::WorkResult> unsent_;
   // Results sent and not yet acknowledged by the master, by individual:

@@ -21,7 +21,13 @@
 namespace animat::protocol {
 
 // Bumped on any incompatible change of protocol.proto's meaning.
-inline constexpr uint32_t kVersion = 1;
+// 2: Work may carry its configuration (several configurations per master).
+inline constexpr uint32_t kVersion = 2;
+
+// The model configurations a worker keeps (Work.config), the least
+// recently used forgotten first; a master serves at most this many at
+// once, so that a worker never forgets one its master still uses.
+inline constexpr size_t kMaxConfigs = 64;
 
 // The version of the model this build implements (docs/model.md §12).
 inline constexpr int kModelVersion = 3;

@@ -12,7 +12,6 @@
 #include <zmq.hpp>
 
 #include "common/evaluation/model_config.h"
-#include "common/protocol/genome_wire.h"
 #include "master/campaign/campaign_file.h"
 #include "master/campaign/shared_evaluators.h"
 #include "master/dispatch/dispatcher.h"
@@ -31,6 +30,7 @@ struct ActiveRun {
   std::unique_ptr<lineage::Store> store;
   RunPlan plan;
   std::unique_ptr<EvolutionRun> run;
+  size_t config = 0;  // The dispatcher's index of its model configuration.
   EvaluationService* lane = nullptr;
   Status status;
   std::atomic<bool> done{false};
@@ -81,25 +81,6 @@ Status PlanRun(const CampaignRun& run, const std::string& dir,
   return Status::Ok();
 }
 
-// The runs with work left must share one model configuration (the
-// dispatcher welcomes workers with one).
-Status CheckOneModel(const CampaignPlan& plan) {
-  const ActiveRun& first = *plan.active.front();
-  const uint64_t hash =
-      protocol::ConfigHash(ConfigToProto(first.plan.settings.model));
-  for (const auto& other : plan.active) {
-    if (protocol::ConfigHash(ConfigToProto(other->plan.settings.model)) !=
-        hash) {
-      return Status::InvalidArgument(
-          "runs " + first.name + " and " + other->name +
-          " have different model configurations; the runs of one campaign "
-          "share one model configuration for now (their evolution settings "
-          "and seeds may differ): make a campaign per model configuration");
-    }
-  }
-  return Status::Ok();
-}
-
 Result<CampaignPlan> Plan(const CampaignOptions& o) {
   Result<std::vector<CampaignRun>> runs = ReadCampaignFile(o.campaign_path);
   if (!runs.ok()) return runs.status();
@@ -113,10 +94,6 @@ Result<CampaignPlan> Plan(const CampaignOptions& o) {
   plan.total = static_cast<int>(runs->size());
   for (const CampaignRun& run : *runs) {
     Status status = PlanRun(run, o.dir, &plan);
-    if (!status.ok()) return status;
-  }
-  if (!plan.active.empty()) {
-    Status status = CheckOneModel(plan);
     if (!status.ok()) return status;
   }
   return plan;
@@ -188,7 +165,7 @@ class CampaignLine {
 void ServeRuns(const CampaignOptions& o, CampaignPlan* plan,
                Dispatcher* dispatcher, const std::atomic<bool>& signalled) {
   SharedEvaluators shared(dispatcher);
-  for (auto& run : plan->active) run->lane = shared.AddLane();
+  for (auto& run : plan->active) run->lane = shared.AddLane(run->config);
   std::atomic<bool> stop{false};
   std::vector<std::thread> threads;
   for (auto& run : plan->active) {
@@ -232,6 +209,12 @@ Status Serve(const CampaignOptions& o, CampaignPlan* plan,
       &context, listen,
       ConfigToProto(plan->active.front()->plan.settings.model));
   if (!dispatcher.ok()) return dispatcher.status();
+  for (auto& run : plan->active) {
+    Result<size_t> config =
+        (*dispatcher)->AddConfig(ConfigToProto(run->plan.settings.model));
+    if (!config.ok()) return config.status().WithPrefix("run " + run->name);
+    run->config = *config;
+  }
   for (auto& run : plan->active) {
     Result<std::unique_ptr<EvolutionRun>> begun = EvolutionRun::Begin(
         run->store.get(), run->plan, Prefixed(run->name, o.session.log));

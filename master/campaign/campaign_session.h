@@ -11,10 +11,9 @@
 // thread pumps the dispatcher. So each store holds what the same run made
 // alone holds, whatever the other runs, the workers and the faults.
 //
-// For now the runs that still have work must share one model
-// configuration (drag, contacts, signals ...): the dispatcher welcomes
-// workers with one. A campaign whose runs differ there is refused, saying
-// which two.
+// Runs may differ in their model configuration (drag, contacts,
+// signals ...): a worker is sent each one with the first work of it
+// (docs/protocol.md), up to protocol::kMaxConfigs distinct ones at once.
 //
 // Runs on the calling thread (plus one thread per run, and their
 // offspring threads); one session per process (the signal handlers).

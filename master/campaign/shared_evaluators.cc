@@ -12,8 +12,8 @@ constexpr uint64_t kIdMask = (uint64_t{1} << SharedEvaluators::kIdBits) - 1;
 
 class SharedEvaluators::Lane final : public EvaluationService {
  public:
-  Lane(SharedEvaluators* owner, uint64_t index)
-      : owner_(owner), index_(index) {}
+  Lane(SharedEvaluators* owner, uint64_t index, size_t config)
+      : owner_(owner), index_(index), config_(config) {}
 
   void Submit(uint64_t individual, const v1::Genome& genome) override {
     Submit(individual, protocol::SerializeGenome(genome));
@@ -30,7 +30,7 @@ class SharedEvaluators::Lane final : public EvaluationService {
       return;
     }
     if (!pending_.insert(individual).second) return;
-    owner_->submitted_.emplace_back(Key(individual), genome);
+    owner_->submitted_.push_back({config_, Key(individual), genome});
   }
   std::vector<Completion> Poll(int timeout_ms) override {
     std::unique_lock<std::mutex> lock(owner_->mutex_);
@@ -70,32 +70,35 @@ class SharedEvaluators::Lane final : public EvaluationService {
 
   SharedEvaluators* owner_;
   uint64_t index_;
+  size_t config_;
   std::set<uint64_t> pending_;  // Submitted, not completed.
   std::vector<Completion> completions_;
   std::condition_variable ready_;
   Status error_;
 };
 
-SharedEvaluators::SharedEvaluators(EvaluationService* service)
+SharedEvaluators::SharedEvaluators(MultiConfigService* service)
     : service_(service) {}
 
 SharedEvaluators::~SharedEvaluators() = default;
 
-EvaluationService* SharedEvaluators::AddLane() {
+EvaluationService* SharedEvaluators::AddLane(size_t config) {
   std::lock_guard<std::mutex> lock(mutex_);
-  lanes_.push_back(std::make_unique<Lane>(this, lanes_.size()));
+  lanes_.push_back(std::make_unique<Lane>(this, lanes_.size(), config));
   return lanes_.back().get();
 }
 
 void SharedEvaluators::Pump(int timeout_ms) {
-  std::deque<std::pair<uint64_t, protocol::SerializedGenome>> submitted;
+  std::deque<Submission> submitted;
   std::vector<uint64_t> acknowledged;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     submitted.swap(submitted_);
     acknowledged.swap(acknowledged_);
   }
-  for (const auto& [key, genome] : submitted) service_->Submit(key, genome);
+  for (const Submission& s : submitted) {
+    service_->SubmitUnder(s.config, s.key, s.genome);
+  }
   if (!acknowledged.empty()) service_->Acknowledge(acknowledged);
   std::vector<Completion> done = service_->Poll(timeout_ms);
   if (done.empty()) return;

@@ -1,5 +1,6 @@
-// Many runs' evaluations through one EvaluationService (the dispatcher,
-// and so one pool of workers). Each run gets a lane: an EvaluationService
+// Many runs' evaluations through one MultiConfigService (the dispatcher,
+// and so one pool of workers), each run under its own model configuration.
+// Each run gets a lane: an EvaluationService
 // of its own that the run's thread uses exactly as a lone run uses the
 // dispatcher. One thread pumps: it hands what the lanes submitted and
 // acknowledged to the service, polls it, and routes each completion back
@@ -44,14 +45,15 @@ class SharedEvaluators {
 
   // `service` is not owned and must outlive this; only the pumping thread
   // calls it.
-  explicit SharedEvaluators(EvaluationService* service);
+  explicit SharedEvaluators(MultiConfigService* service);
   ~SharedEvaluators();
   SharedEvaluators(const SharedEvaluators&) = delete;
   SharedEvaluators& operator=(const SharedEvaluators&) = delete;
 
-  // A new lane, valid while this lives. The pumping thread, before any
-  // run uses its lane.
-  EvaluationService* AddLane();
+  // A new lane whose individuals are evaluated under `config` (an index
+  // the service's AddConfig gave), valid while this lives. The pumping
+  // thread, before any run uses its lane.
+  EvaluationService* AddLane(size_t config);
 
   // Hands the lanes' submissions and acknowledgements to the service,
   // polls it for up to `timeout_ms` and routes the completions. The
@@ -66,10 +68,16 @@ class SharedEvaluators {
   class Lane;
 
   mutable std::mutex mutex_;
-  EvaluationService* service_;
+  struct Submission {
+    size_t config;
+    uint64_t key;
+    protocol::SerializedGenome genome;
+  };
+
+  MultiConfigService* service_;
   std::vector<std::unique_ptr<Lane>> lanes_;
   // Waiting for the next pump (mutex_).
-  std::deque<std::pair<uint64_t, protocol::SerializedGenome>> submitted_;
+  std::deque<Submission> submitted_;
   std::vector<uint64_t> acknowledged_;
 };
 

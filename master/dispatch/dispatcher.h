@@ -92,7 +92,7 @@ struct DispatcherOptions {
   const Clock* clock = &RealClock();
 };
 
-class Dispatcher final : public EvaluationService, private Outbox {
+class Dispatcher final : public MultiConfigService, private Outbox {
  public:
   // Checks the options (CurveZMQ keys, an endpoint beyond loopback) and
   // binds the socket: fails, saying why, without binding when they are
@@ -116,6 +116,17 @@ class Dispatcher final : public EvaluationService, private Outbox {
   // the caller may already have it.
   void Submit(uint64_t individual,
               const protocol::SerializedGenome& genome) override;
+
+  // Further model configurations (LeaseScheduler::AddConfig): individuals
+  // submitted under one are evaluated under it; at most
+  // protocol::kMaxConfigs, the welcome's included.
+  Result<size_t> AddConfig(const v1::Config& config) override {
+    return scheduler_.AddConfig(config);
+  }
+  void SubmitUnder(size_t config, uint64_t individual,
+                   const protocol::SerializedGenome& genome) override {
+    scheduler_.Submit(individual, genome, config);
+  }
 
   // Serves workers for up to `timeout_ms` (of the clock's time) and returns
   // the completions that came in, as soon as there are some.

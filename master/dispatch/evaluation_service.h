@@ -12,9 +12,11 @@
 #include <string>
 #include <vector>
 
+#include "animat/v1/config.pb.h"
 #include "animat/v1/genome.pb.h"
 #include "animat/v1/trace.pb.h"
 #include "common/base/clock.h"
+#include "common/base/status.h"
 #include "common/protocol/genome_wire.h"
 
 namespace animat {
@@ -54,6 +56,18 @@ class EvaluationService {
   virtual size_t pending() const = 0;
   // The time the service keeps (valid while it lives).
   virtual const Clock& clock() const = 0;
+};
+
+// An evaluation service that evaluates under several model configurations
+// at once (the dispatcher, for a campaign's runs).
+class MultiConfigService : public EvaluationService {
+ public:
+  // The index to submit under for `config` (one added before gives its
+  // index again). Fails, saying why, beyond the service's limit.
+  virtual Result<size_t> AddConfig(const v1::Config& config) = 0;
+  // Submit, under configuration `config` (an index AddConfig gave).
+  virtual void SubmitUnder(size_t config, uint64_t individual,
+                           const protocol::SerializedGenome& genome) = 0;
 };
 
 }  // namespace animat

@@ -27,21 +27,37 @@ std::string WorkerName(const v1::Hello& hello) {
 
 LeaseScheduler::LeaseScheduler(SchedulerOptions options, v1::Config model,
                                Outbox* outbox)
-    : options_(std::move(options)),
-      config_(std::move(model)),
-      config_hash_(protocol::ConfigHash(config_)),
-      outbox_(outbox) {
+    : options_(std::move(options)), outbox_(outbox) {
+  const uint64_t hash = protocol::ConfigHash(model);
+  std::string bytes = model.SerializeAsString();
+  configs_.push_back({std::move(model), hash, std::move(bytes)});
   idle_since_ = options_.clock->Now();
   last_notice_ = idle_since_;
   if (!options_.notices) options_.notices = options_.log;
 }
 
+Result<size_t> LeaseScheduler::AddConfig(const v1::Config& config) {
+  const uint64_t hash = protocol::ConfigHash(config);
+  for (size_t i = 0; i < configs_.size(); ++i) {
+    if (configs_[i].hash == hash) return i;
+  }
+  if (configs_.size() >= protocol::kMaxConfigs) {
+    return Status::InvalidArgument("a master serves at most " +
+                                   std::to_string(protocol::kMaxConfigs) +
+                                   " model configurations at once");
+  }
+  configs_.push_back({config, hash, config.SerializeAsString()});
+  return configs_.size() - 1;
+}
+
 void LeaseScheduler::Submit(uint64_t individual,
-                            const protocol::SerializedGenome& genome) {
+                            const protocol::SerializedGenome& genome,
+                            size_t config) {
   if (pending_.count(individual) != 0) return;
   Individual& entry = pending_[individual];
   entry.item = EncodeWorkItem(individual, genome);
   entry.genome_hash = genome.hash;
+  entry.config = config < configs_.size() ? config : 0;
   queue_.push_back(individual);
 }
 
@@ -191,8 +207,9 @@ void LeaseScheduler::Greet(const std::string& identity, const v1::Hello& hello,
   v1::Welcome* welcome = envelope.mutable_welcome();
   welcome->set_protocol_version(protocol::kVersion);
   welcome->set_build_id(protocol::BuildId());
-  *welcome->mutable_config() = config_;
-  welcome->set_config_hash(config_hash_);
+  *welcome->mutable_config() = configs_[0].message;
+  welcome->set_config_hash(configs_[0].hash);
+  worker.configs = {0};
   welcome->set_heartbeat_ms(options_.heartbeat_ms);
   Send(identity, envelope);
   options_.log("worker " + name + " joined (" + std::to_string(worker.threads) +
@@ -304,13 +321,14 @@ void LeaseScheduler::Dispatch() {
       // A suspect (its last worker died or its lease expired) goes alone to
       // a worker holding nothing else, so it cannot take others down.
       if (worker.leased.empty()) {
-        WorkEncoder work(config_hash_);
-        std::vector<uint64_t> items;
         const uint64_t suspect = suspects_.begin()->second;
+        const size_t config = pending_.at(suspect).config;
+        WorkEncoder work(configs_[config].hash);
+        std::vector<uint64_t> items;
         suspects_.erase(suspects_.begin());
         worker.suspect = suspect;
         Lease(identity, worker, suspect, deadline, &work, &items);
-        SendWork(identity, worker, &work, items);
+        SendWork(identity, worker, config, &work, items);
         if (drainer_ == identity) drainer_.clear();
         continue;
       }
@@ -324,33 +342,41 @@ void LeaseScheduler::Dispatch() {
       // Room for a batch of items like the next one.
       const size_t batch = static_cast<size_t>(
           std::min(worker.credit, static_cast<int>(protocol::kMaxBatch)));
+      const Individual& next = pending_.at(queue_.front());
+      // One Work holds items of one configuration: the next one's.
+      const size_t config = next.config;
       WorkEncoder work(
-          config_hash_,
-          std::min(protocol::kMaxWorkBytes,
-                   batch * (pending_.at(queue_.front()).item.size() + 8)));
+          configs_[config].hash,
+          std::min(protocol::kMaxWorkBytes, batch * (next.item.size() + 8)));
       std::vector<uint64_t> items;
       while (worker.credit > 0 && !queue_.empty() &&
              work.items() < protocol::kMaxBatch) {
         const uint64_t individual = queue_.front();
-        const size_t item_bytes = pending_.at(individual).item.size();
+        const Individual& entry = pending_.at(individual);
         // Keep each message well inside the sockets' size limit.
-        if (work.items() > 0 &&
-            work.item_bytes() + item_bytes > protocol::kMaxWorkBytes) {
+        if (entry.config != config ||
+            (work.items() > 0 &&
+             work.item_bytes() + entry.item.size() > protocol::kMaxWorkBytes)) {
           break;
         }
         queue_.pop_front();
         Lease(identity, worker, individual, deadline, &work, &items);
       }
-      if (!SendWork(identity, worker, &work, items)) break;
+      if (!SendWork(identity, worker, config, &work, items)) break;
     }
   }
   if (suspects_.empty()) drainer_.clear();
 }
 
 bool LeaseScheduler::SendWork(const std::string& identity, WorkerState& worker,
-                              WorkEncoder* work,
+                              size_t config, WorkEncoder* work,
                               const std::vector<uint64_t>& items) {
-  if (SendEncoded(identity, "work", work->Finish())) return true;
+  const bool carried = worker.configs.count(config) == 0;
+  if (carried) work->SetConfig(configs_[config].bytes);
+  if (SendEncoded(identity, "work", work->Finish())) {
+    if (carried) worker.configs.insert(config);
+    return true;
+  }
   // Not delivered (the worker's queue is full or it is gone): the items
   // go back at once, without counting an attempt.
   for (auto id = items.rbegin(); id != items.rend(); ++id) {
@@ -458,8 +484,9 @@ void LeaseScheduler::Isolate(uint64_t individual) {
   if (options_.isolation == nullptr) {
     options_.log(ended + "; retried on workers (no isolation here)");
   } else {
-    const Status started = options_.isolation->Start(individual, entry.item,
-                                                     config_, config_hash_);
+    const Config& config = configs_[entry.config];
+    const Status started = options_.isolation->Start(
+        individual, entry.item, config.message, config.hash);
     if (started.ok()) {
       entry.isolated = true;
       ++stats_.isolated;

@@ -89,8 +89,17 @@ class LeaseScheduler {
   // The endpoint the transport listens on, for the idle notice.
   void set_endpoint(std::string endpoint) { endpoint_ = std::move(endpoint); }
 
-  // Queues an individual; one already pending is left as it is.
-  void Submit(uint64_t individual, const protocol::SerializedGenome& genome);
+  // A further model configuration to evaluate under, and the index to
+  // submit under (the constructor's `model` is 0); one already added gives
+  // its index again. A worker is sent each configuration in the first Work
+  // of it that it gets (Work.config). Fails beyond protocol::kMaxConfigs.
+  Result<size_t> AddConfig(const v1::Config& config);
+
+  // Queues an individual, to be evaluated under configuration `config`
+  // (an index AddConfig gave; 0: the constructor's); one already pending
+  // is left as it is.
+  void Submit(uint64_t individual, const protocol::SerializedGenome& genome,
+              size_t config = 0);
 
   // One decoded message from the peer `identity`; completions it brings
   // are appended to `done`.
@@ -122,7 +131,8 @@ class LeaseScheduler {
   }
   size_t workers() const { return workers_.size(); }
   const DispatcherStats& stats() const { return stats_; }
-  uint64_t config_hash() const { return config_hash_; }
+  // Of configuration 0.
+  uint64_t config_hash() const { return configs_[0].hash; }
   const Clock& clock() const { return *options_.clock; }
 
  private:
@@ -139,11 +149,14 @@ class LeaseScheduler {
     bool send_failed = false;  // The last send failed (logged once).
     std::set<uint64_t> leased;
     std::optional<uint64_t> suspect;  // The suspect it holds alone.
+    // The configurations it has (the welcome's, those Work carried).
+    std::set<size_t> configs;
   };
 
   struct Individual {
     std::string item;  // The serialised WorkItem (work_encoder.h).
     uint64_t genome_hash = 0;
+    size_t config = 0;   // Index in configs_.
     uint64_t lease = 0;  // Serial of its current lease.
     int attempts = 0;
     bool leased = false;
@@ -187,14 +200,21 @@ class LeaseScheduler {
   // The same for an encoded envelope; `what` names its body for the log.
   bool SendEncoded(const std::string& identity, const char* what,
                    const std::string& bytes);
-  // Sends the work of `items`; if it cannot be delivered, they go back to
-  // the queue at once (no attempt counted) and false is returned.
-  bool SendWork(const std::string& identity, WorkerState& worker,
+  // Sends the work of `items`, all of configuration `config` (carried
+  // when the worker does not have it yet); if it cannot be delivered, they
+  // go back to the queue at once (no attempt counted) and false is
+  // returned.
+  bool SendWork(const std::string& identity, WorkerState& worker, size_t config,
                 WorkEncoder* work, const std::vector<uint64_t>& items);
 
+  struct Config {
+    v1::Config message;
+    uint64_t hash = 0;
+    std::string bytes;  // Serialised, as Work.config carries it.
+  };
+
   SchedulerOptions options_;
-  v1::Config config_;
-  uint64_t config_hash_;
+  std::vector<Config> configs_;  // [0]: the constructor's.
   Outbox* outbox_;
   std::string endpoint_;
   std::map<uint64_t, Individual> pending_;

@@ -19,6 +19,7 @@ constexpr uint32_t kEnvelopeProtocolVersion = 1;
 constexpr uint32_t kEnvelopeWork = 14;
 constexpr uint32_t kWorkConfigHash = 1;
 constexpr uint32_t kWorkItems = 2;
+constexpr uint32_t kWorkConfig = 3;
 constexpr uint32_t kItemIndividual = 1;
 constexpr uint32_t kItemGenome = 2;
 constexpr uint32_t kItemGenomeHash = 3;
@@ -93,6 +94,9 @@ void WorkEncoder::Add(std::string_view item) {
 }
 
 std::string WorkEncoder::Finish() {
+  // The carried config is the last field (field order, as protobuf
+  // writes it): after the items.
+  if (!config_.empty()) AppendBytes(kWorkConfig, config_, &out_);
   std::string config;
   if (config_hash_ != 0) AppendFixed64(kWorkConfigHash, config_hash_, &config);
   const size_t items = out_.size() - kHeadRoom;
@@ -109,6 +113,7 @@ std::string WorkEncoder::Finish() {
   std::string out;
   out.swap(out_);
   out_.assign(kHeadRoom, '\0');
+  config_.clear();
   items_ = 0;
   items_bytes_ = 0;
   return out;

@@ -22,11 +22,16 @@ namespace animat {
 std::string EncodeWorkItem(uint64_t individual,
                            const protocol::SerializedGenome& genome);
 
-// One Envelope{protocol_version: kVersion, work: Work{config_hash, items}}.
+// One Envelope{protocol_version: kVersion, work: Work{config_hash, items,
+// config}}.
 class WorkEncoder {
  public:
   // `expected_bytes`: of the items to come, if known (saves reallocation).
   explicit WorkEncoder(uint64_t config_hash, size_t expected_bytes = 0);
+
+  // The serialised Config of config_hash, to carry in this message (a
+  // worker that may not have it); none by default.
+  void SetConfig(std::string_view config) { config_.assign(config); }
 
   // Appends an item made by EncodeWorkItem.
   void Add(std::string_view item);
@@ -34,11 +39,13 @@ class WorkEncoder {
   // Of the items added so far.
   size_t item_bytes() const { return items_bytes_; }
 
-  // The envelope's bytes; the encoder is then empty (no items).
+  // The envelope's bytes; the encoder is then empty (no items, no
+  // config).
   std::string Finish();
 
  private:
   uint64_t config_hash_;
+  std::string config_;  // Serialised; empty: none carried.
   // The envelope: kHeadRoom bytes left for the envelope's and the Work's
   // heads (written by Finish, which then drops the unused room), then the
   // items, so that they are copied once.

@@ -18,15 +18,23 @@ namespace animat {
 namespace {
 
 // An evaluation service whose individuals complete when the test says.
-class ScriptedService final : public EvaluationService {
+class ScriptedService final : public MultiConfigService {
  public:
   void Submit(uint64_t individual, const v1::Genome& genome) override {
     Submit(individual, protocol::SerializeGenome(genome));
   }
   void Submit(uint64_t individual,
               const protocol::SerializedGenome& genome) override {
+    SubmitUnder(0, individual, genome);
+  }
+  Result<size_t> AddConfig(const v1::Config&) override {
+    return Status::Internal("not used here");
+  }
+  void SubmitUnder(size_t config, uint64_t individual,
+                   const protocol::SerializedGenome& genome) override {
     submitted.push_back(individual);
     hashes[individual] = genome.hash;
+    configs[individual] = config;
   }
   std::vector<Completion> Poll(int) override {
     std::vector<Completion> done;
@@ -50,6 +58,7 @@ class ScriptedService final : public EvaluationService {
 
   std::vector<uint64_t> submitted;
   std::map<uint64_t, uint64_t> hashes;
+  std::map<uint64_t, size_t> configs;
   std::vector<uint64_t> acknowledged;
   std::vector<Completion> ready;
 };
@@ -65,8 +74,8 @@ constexpr uint64_t kLane1 = uint64_t{1} << SharedEvaluators::kIdBits;
 TEST(SharedEvaluatorsTest, OneIdInTwoRunsIsTwoIndividualsEachBackToItsRun) {
   ScriptedService service;
   SharedEvaluators shared(&service);
-  EvaluationService* a = shared.AddLane();
-  EvaluationService* b = shared.AddLane();
+  EvaluationService* a = shared.AddLane(0);
+  EvaluationService* b = shared.AddLane(5);
   a->Submit(1, GenomeWith(1));
   b->Submit(1, GenomeWith(2));
   a->Submit(1, GenomeWith(1));  // Pending already: left as it is.
@@ -76,6 +85,9 @@ TEST(SharedEvaluatorsTest, OneIdInTwoRunsIsTwoIndividualsEachBackToItsRun) {
   EXPECT_EQ(service.submitted, (std::vector<uint64_t>{1, kLane1 | 1}));
   EXPECT_EQ(service.hashes[kLane1 | 1],
             protocol::SerializeGenome(GenomeWith(2)).hash);
+  // Each under its run's configuration.
+  EXPECT_EQ(service.configs[1], 0u);
+  EXPECT_EQ(service.configs[kLane1 | 1], 5u);
 
   service.Complete(kLane1 | 1, 2.5);
   shared.Pump(0);
@@ -97,7 +109,7 @@ TEST(SharedEvaluatorsTest, OneIdInTwoRunsIsTwoIndividualsEachBackToItsRun) {
 TEST(SharedEvaluatorsTest, AnIdBeyondTheLanesBitsIsAnErrorAndNotSubmitted) {
   ScriptedService service;
   SharedEvaluators shared(&service);
-  EvaluationService* lane = shared.AddLane();
+  EvaluationService* lane = shared.AddLane(0);
   lane->Submit(uint64_t{1} << SharedEvaluators::kIdBits, GenomeWith(1));
   shared.Pump(0);
   EXPECT_TRUE(service.submitted.empty());
@@ -109,7 +121,7 @@ TEST(SharedEvaluatorsTest, AnIdBeyondTheLanesBitsIsAnErrorAndNotSubmitted) {
 TEST(SharedEvaluatorsTest, ARunWaitingInPollIsWokenByThePump) {
   ScriptedService service;
   SharedEvaluators shared(&service);
-  EvaluationService* lane = shared.AddLane();
+  EvaluationService* lane = shared.AddLane(0);
   lane->Submit(3, GenomeWith(3));
   shared.Pump(0);
   std::vector<Completion> done;

@@ -457,5 +457,65 @@ TEST_F(LeaseSchedulerTest, ASuspectIsLeasedAloneSoItTakesNobodyDownWithIt) {
   }
 }
 
+// Several configurations: a Work holds items of one, in queue order, and
+// carries it to a worker the first time only.
+TEST_F(LeaseSchedulerTest, EachWorkIsOfOneConfigurationCarriedOncePerWorker) {
+  LeaseScheduler& s = Start();
+  v1::Config other;
+  other.mutable_physics()->set_drag_normal(10);
+  Result<size_t> added = s.AddConfig(other);
+  ASSERT_TRUE(added.ok());
+  EXPECT_EQ(*added, 1u);
+  EXPECT_EQ(*s.AddConfig(other), 1u);         // Again: the same index.
+  EXPECT_EQ(*s.AddConfig(v1::Config{}), 0u);  // The welcome's.
+  s.Submit(1, GenomeOf(1), 0);
+  s.Submit(2, GenomeOf(2), 1);
+  s.Submit(3, GenomeOf(3), 1);
+  s.Submit(4, GenomeOf(4), 0);
+  s.Submit(5, GenomeOf(5), 1);
+  for (const std::string worker : {"a", "b"}) {
+    From(worker, Hello(1, worker == "a" ? 11 : 12));
+  }
+  From("a", Credit(4));
+  From("b", Credit(1));
+  const std::vector<v1::Envelope> a = outbox_.Of("a", v1::Envelope::kWork);
+  ASSERT_EQ(a.size(), 3u);
+  const uint64_t other_hash = protocol::ConfigHash(other);
+  EXPECT_EQ(a[0].work().config_hash(), s.config_hash());
+  EXPECT_EQ(ItemsOf({a[0]}), std::vector<uint64_t>{1});
+  EXPECT_FALSE(a[0].work().has_config());  // The welcome gave it.
+  EXPECT_EQ(a[1].work().config_hash(), other_hash);
+  EXPECT_EQ(ItemsOf({a[1]}), (std::vector<uint64_t>{2, 3}));
+  ASSERT_TRUE(a[1].work().has_config());
+  EXPECT_EQ(protocol::ConfigHash(a[1].work().config()), other_hash);
+  EXPECT_EQ(ItemsOf({a[2]}), std::vector<uint64_t>{4});
+  const std::vector<v1::Envelope> b = outbox_.Of("b", v1::Envelope::kWork);
+  ASSERT_EQ(b.size(), 1u);
+  EXPECT_EQ(ItemsOf(b), std::vector<uint64_t>{5});
+  EXPECT_TRUE(b[0].work().has_config());  // New to b.
+  // a, given more, gets configuration 1 named only.
+  s.Submit(6, GenomeOf(6), 1);
+  From("a", Credit(1));
+  const std::vector<v1::Envelope> again = outbox_.Of("a", v1::Envelope::kWork);
+  ASSERT_EQ(again.size(), 4u);
+  EXPECT_EQ(again[3].work().config_hash(), other_hash);
+  EXPECT_FALSE(again[3].work().has_config());
+}
+
+TEST_F(LeaseSchedulerTest, AtMostMaxConfigsConfigurationsAreServed) {
+  LeaseScheduler& s = Start();
+  for (size_t i = 1; i < protocol::kMaxConfigs; ++i) {
+    v1::Config config;
+    config.mutable_physics()->set_drag_normal(static_cast<double>(i));
+    ASSERT_TRUE(s.AddConfig(config).ok()) << i;
+  }
+  v1::Config one_more;
+  one_more.mutable_physics()->set_drag_normal(1000);
+  Result<size_t> refused = s.AddConfig(one_more);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.status().message().find("at most 64 model configurations"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace animat

@@ -95,6 +95,28 @@ TEST(WorkEncoderTest, EnvelopeIsEncodeOfTheSameWork) {
   }
 }
 
+TEST(WorkEncoderTest, ACarriedConfigIsEncodeOfTheSameWork) {
+  const std::vector<v1::Genome> genomes = Genomes(3);
+  v1::Config config;
+  config.mutable_physics()->set_drag_normal(10);
+  config.mutable_development()->set_max_cells(8);
+  const uint64_t hash = protocol::ConfigHash(config);
+  WorkEncoder encoder(hash);
+  encoder.SetConfig(config.SerializeAsString());
+  v1::Envelope envelope;
+  envelope.mutable_work()->set_config_hash(hash);
+  for (size_t i = 0; i < genomes.size(); ++i) {
+    encoder.Add(EncodeWorkItem(i + 1, protocol::SerializeGenome(genomes[i])));
+    *envelope.mutable_work()->add_items() = Item(i + 1, genomes[i]);
+  }
+  *envelope.mutable_work()->mutable_config() = config;
+  EXPECT_EQ(encoder.Finish(), protocol::Encode(envelope));
+  // Not carried again unless set again.
+  envelope.mutable_work()->clear_config();
+  envelope.mutable_work()->clear_items();
+  EXPECT_EQ(encoder.Finish(), protocol::Encode(envelope));
+}
+
 TEST(WorkEncoderTest, FinishEmptiesTheEncoder) {
   const std::vector<v1::Genome> genomes = Genomes(1);
   WorkEncoder encoder(5);

@@ -143,22 +143,31 @@ TEST_F(CampaignCliTest, AnimatMasterServesACampaignToWorkersItDidNotStart) {
   }
 }
 
-TEST_F(CampaignCliTest, RunsOfDifferentModelsAreRefusedForNowSayingWhich) {
+// Runs that differ in their model (here the drag) share the workers: each
+// is sent every configuration with its first work of it, and each store is
+// the run made alone.
+TEST_F(CampaignCliTest, RunsOfDifferentModelsShareTheWorkersEachAsAlone) {
   TestRun base;
+  base.generations = 4;
   WriteConfig("base.txtpb", base);
   ASSERT_TRUE(WriteFile(Path("campaign.txtpb"),
                         "runs { config: \"base.txtpb\" axes { "
                         "values { label: \"dn1\" } "
                         "values { label: \"dn10\" set: \"model { physics { "
-                        "drag_normal: 10 } }\" } } }\n")
+                        "drag_normal: 10 } }\" } } seeds: [3] }\n")
                   .ok());
-  std::unique_ptr<ChildProcess> campaign = StartCampaign();
-  ASSERT_TRUE(AwaitExit(*campaign, kStepWait, "the campaign"));
-  EXPECT_EQ(campaign->exit_code(), 1);
-  EXPECT_NE(campaign->output().find("runs dn1 and dn10 have different model "
-                                    "configurations"),
-            std::string::npos)
-      << campaign->output();
+  const std::string output = CampaignToEnd();
+  EXPECT_NE(output.find("finished: 2 runs in"), std::string::npos) << output;
+  ExpectSameContents(Alone("dn1", base), ReadStoreContents(Store("dn1-seed3")));
+  std::string dn10 = base.Text();
+  dn10.insert(dn10.find("model {\n") + 8, "  physics { drag_normal: 10 }\n");
+  ASSERT_TRUE(WriteFile(Path("alone-dn10.txtpb"), dn10).ok());
+  RunToEnd(Path("alone-dn10.txtpb"), Path("alone-dn10.db"), 1);
+  ExpectSameContents(ReadStoreContents(Path("alone-dn10.db")),
+                     ReadStoreContents(Store("dn10-seed3")));
+  // The two models' runs differ, so each ran under its own.
+  EXPECT_NE(ReadStoreContents(Store("dn1-seed3")).individuals,
+            ReadStoreContents(Store("dn10-seed3")).individuals);
 }
 
 }  // namespace

@@ -33,8 +33,8 @@ constexpr char kRunConfig[] =
     "initial_min_fitness: 0 }\n";
 
 TEST(CampaignSessionTest, EveryRunIsServedToItsEndThroughOneDispatcher) {
-  const std::string dir = ::testing::TempDir() + "/campaign-session-" +
-                          std::to_string(getpid());
+  const std::string dir =
+      ::testing::TempDir() + "/campaign-session-" + std::to_string(getpid());
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   ASSERT_TRUE(WriteFile(dir + "/run.txtpb", kRunConfig).ok());
@@ -71,8 +71,8 @@ TEST(CampaignSessionTest, EveryRunIsServedToItsEndThroughOneDispatcher) {
 
   const Status status = RunCampaign(o);
   ASSERT_TRUE(status.ok()) << status.ToString();
-  EXPECT_EQ(generations, (std::map<std::string, int>{{"r-seed10", 3},
-                                                     {"r-seed3", 3}}));
+  EXPECT_EQ(generations,
+            (std::map<std::string, int>{{"r-seed10", 3}, {"r-seed3", 3}}));
   EXPECT_NE(lines.back().find("finished: 2 runs in"), std::string::npos)
       << lines.back();
   for (const char* name : {"r-seed3", "r-seed10"}) {
