@@ -6,6 +6,7 @@
 
 #include <unistd.h>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -93,6 +94,36 @@ TEST(CampaignFileTest, TheExampleCampaignExpandsAsDocumented) {
   EXPECT_EQ(runs->back().settings.evolution.tournament_size, 5);
   EXPECT_EQ(runs->back().settings.evolution.population, 300);  // The paper's.
   EXPECT_EQ(runs->back().config.model().physics().drag_normal(), 0.1);
+}
+
+// The replication's campaign names its runs as scripts/replicate.sh did,
+// with the same fields.
+TEST(CampaignFileTest, TheReplicationCampaignHasTheReplicationsRuns) {
+  Result<std::vector<CampaignRun>> runs =
+      ReadCampaignFile(std::string(ANIMAT_SOURCE_DIR) +
+                       "/configs/campaigns/replication-v3.txtpb");
+  ASSERT_TRUE(runs.ok()) << runs.status().ToString();
+  ASSERT_EQ(runs->size(), 30u);
+  std::map<std::string, const CampaignRun*> by_name;
+  for (const CampaignRun& run : *runs) by_name[run.name] = &run;
+  for (const char* name :
+       {"dn0.1-seed1", "dn1-seed6", "dn10-seed3", "all-dn0.1-seed4",
+        "kl1-dn0.1-seed1", "dn0.01-seed4"}) {
+    EXPECT_EQ(by_name.count(name), 1u) << name;
+  }
+  const v1::RunConfig& dn10 = by_name.at("dn10-seed3")->config;
+  EXPECT_EQ(dn10.model().physics().drag_normal(), 10.0);
+  EXPECT_EQ(dn10.model().physics().drag_tangential(), 0.05);
+  EXPECT_EQ(dn10.evolution().seed(), 3u);
+  EXPECT_EQ(dn10.evolution().generations(), 150);
+  const v1::RunConfig& all = by_name.at("all-dn0.1-seed2")->config;
+  EXPECT_EQ(all.model().physics().contact_rule(), v1::PhysicsConfig::ALL);
+  EXPECT_EQ(all.model().physics().drag_normal(), 0.1);
+  EXPECT_EQ(
+      by_name.at("kl1-dn0.1-seed1")->config.model().signals().kernel_length(),
+      1.0);
+  EXPECT_EQ(by_name.at("dn0.01-seed1")->config.model().physics().drag_normal(),
+            0.01);
 }
 
 TEST(CampaignFileTest, MistakesAreRefusedNamingTheEntry) {
