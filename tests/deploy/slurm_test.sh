@@ -4,7 +4,9 @@
 # the evolution run, cancel it (scancel), resubmit, interrupt it with the
 # walltime warning (SIGTERM to the batch script only), resubmit, let it
 # finish; then check that the store holds exactly what an uninterrupted
-# run of the same configuration holds.
+# run of the same configuration holds. Then the same for a campaign of two
+# runs of different drags: submitted, cancelled, resubmitted to its end;
+# each store is the store of its run made alone.
 #
 #   tests/deploy/slurm_test.sh BIN_DIR
 #
@@ -120,4 +122,44 @@ grep -q "CurveZMQ with 1 allowed worker keys" "$work/job-$job.log" ||
 [ "$(digest "$work/run.db")" = "$(digest "$work/reference.db")" ] ||
   fail "the interrupted run differs from the uninterrupted one"
 echo "slurm_test: $(sqlite3 "$work/run.db" "SELECT COUNT(*) FROM individuals") individuals identical to the uninterrupted run"
+
+# 4. A campaign: the small configuration, and the same at another drag.
+cat > "$work/campaign.txtpb" <<'CAMPAIGN'
+runs {
+  name: "c"
+  config: "run.txtpb"
+  axes {
+    values { label: "d1" }
+    values { label: "d10" set: "model { physics { drag_normal: 10 } }" }
+  }
+}
+CAMPAIGN
+sed 's/^model { evaluation/model { physics { drag_normal: 10 } evaluation/' \
+  "$work/run.txtpb" > "$work/d10.txtpb"
+grep -q drag_normal "$work/d10.txtpb" || fail "no drag in the reference's configuration"
+"$bin/animat" evolve --config "$work/d10.txtpb" --db "$work/reference-d10.db" \
+  --workers 1 > "$work/reference-d10.log" 2>&1 || fail "the d10 reference run failed"
+submit_campaign() {
+  ANIMAT_CAMPAIGN="$work/campaign.txtpb" ANIMAT_DIR="$work/campaign" \
+    ANIMAT_BIN="$bin" ANIMAT_PORT=25556 \
+    sbatch --parsable --ntasks=2 --output="$work/job-%j.log" \
+      "$source_dir/deploy/slurm/animat.sbatch"
+}
+job=$(submit_campaign)
+echo "slurm_test: campaign job $job submitted"
+wait_generations "$work/campaign/c-d1.db" 3
+scancel "$job"
+wait_job_gone "$job"
+[ "$(generations_done "$work/campaign/c-d1.db")" -lt "$small_config_generations" ] ||
+  fail "the campaign finished before it was cancelled"
+job=$(submit_campaign)
+echo "slurm_test: campaign job $job resubmitted"
+wait_job_gone "$job"
+grep -q "finished: 2 runs in" "$work/job-$job.log" ||
+  fail "the campaign did not finish"
+[ "$(digest "$work/campaign/c-d1.db")" = "$(digest "$work/reference.db")" ] ||
+  fail "the campaign's run c-d1 differs from the run made alone"
+[ "$(digest "$work/campaign/c-d10.db")" = "$(digest "$work/reference-d10.db")" ] ||
+  fail "the campaign's run c-d10 differs from the run made alone"
+echo "slurm_test: a campaign of two drags, cancelled and resubmitted, gave each run's store"
 keep=0
