@@ -3,7 +3,8 @@
 # no warning), and their ExecStart lines do what the guide says, run as
 # systemd would run them: the master's starts a run, resumes it after
 # SIGTERM (its KillSignal), and the run ends identical to an uninterrupted
-# one; the worker's serves it.
+# one; the worker's serves it. The campaign's unit does the same for a
+# campaign of two drags, each store equal to its run made alone.
 #
 #   tests/deploy/systemd_test.sh BIN_DIR
 #
@@ -38,12 +39,13 @@ source "$source_dir/tests/deploy/lib.sh"
 
 # 1. verify, with the programs where this build has them.
 mkdir -p "$work/units"
-for unit in animat-master.service animat-worker@.service; do
+for unit in animat-master.service animat-campaign.service \
+            animat-worker@.service; do
   sed "s#/usr/local/bin/#$bin/#g" "$units/$unit" > "$work/units/$unit"
 done
 cp "$work/units/animat-worker@.service" "$work/units/animat-worker@1.service"
-for unit in animat-master.service animat-worker@.service \
-            animat-worker@1.service; do
+for unit in animat-master.service animat-campaign.service \
+            animat-worker@.service animat-worker@1.service; do
   if ! out=$(cd "$work/units" && systemd-analyze verify "./$unit" 2>&1); then
     fail "systemd-analyze verify $unit: $out"
   fi
@@ -101,8 +103,55 @@ wait "$master" || status=$?
 [ "$(run_state "$work/run.db")" = finished ] || fail "the run did not finish"
 [ "$(digest "$work/run.db")" = "$(digest "$work/reference.db")" ] ||
   fail "the stopped and restarted run differs from the uninterrupted one"
+echo "systemd_test: the restarted run equals the uninterrupted one"
+
+# 3. The campaign's unit: two runs (the small configuration at two drags),
+# stopped with SIGTERM mid-way, started again to the end, with the same
+# worker.
+cat > "$work/campaign.txtpb" <<'CAMPAIGN'
+runs {
+  name: "c"
+  config: "run.txtpb"
+  axes {
+    values { label: "d1" }
+    values { label: "d10" set: "model { physics { drag_normal: 10 } }" }
+  }
+}
+CAMPAIGN
+sed 's/^model { evaluation/model { physics { drag_normal: 10 } evaluation/' \
+  "$work/run.txtpb" > "$work/d10.txtpb"
+grep -q drag_normal "$work/d10.txtpb" || fail "no drag in the d10 configuration"
+"$bin/animat" evolve --config "$work/d10.txtpb" --db "$work/reference-d10.db" \
+  --workers 1 > "$work/reference-d10.log" 2>&1 || fail "the d10 reference failed"
+campaign_cmd=$(exec_start animat-campaign.service)
+export ANIMAT_CAMPAIGN="$work/campaign.txtpb" ANIMAT_DIR="$work/campaign"
+start_campaign() {
+  # systemd expands ${VAR} from the environment file: eval does here.
+  eval "exec $campaign_cmd" >> "$work/campaign.log" 2>&1 &
+  master=$!
+  pids+=("$master")
+}
+start_campaign
+wait_generations "$work/campaign/c-d1.db" 3
+kill -TERM "$master"
+status=0
+wait "$master" || status=$?
+[ "$status" -eq 0 ] || fail "the campaign exited $status on SIGTERM, not 0"
+[ "$(generations_done "$work/campaign/c-d1.db")" -lt "$small_config_generations" ] ||
+  fail "the campaign finished before SIGTERM"
+start_campaign
+status=0
+wait "$master" || status=$?
+[ "$status" -eq 0 ] || fail "the restarted campaign exited $status"
+grep -q "finished: 2 runs in" "$work/campaign.log" ||
+  fail "the campaign did not finish"
+[ "$(digest "$work/campaign/c-d1.db")" = "$(digest "$work/reference.db")" ] ||
+  fail "the campaign's run c-d1 differs from the run made alone"
+[ "$(digest "$work/campaign/c-d10.db")" = "$(digest "$work/reference-d10.db")" ] ||
+  fail "the campaign's run c-d10 differs from the run made alone"
+echo "systemd_test: the stopped and restarted campaign gave each run's store"
+
 kill -TERM "$worker"
 status=0
 wait "$worker" || status=$?
 [ "$status" -eq 0 ] || fail "the worker exited $status on SIGTERM, not 0"
-echo "systemd_test: the restarted run equals the uninterrupted one"
