@@ -1,11 +1,14 @@
 #!/usr/bin/env python3
-"""Checks deploy/k8s/ for consistency and prints its commands for a local run.
+"""Checks a kustomization of deploy/k8s/ (deploy/k8s for one run,
+deploy/k8s/campaign for a campaign) for consistency and prints its commands
+for a local run.
 
-    k8s_commands.py K8S_DIR check
-    k8s_commands.py K8S_DIR master-script   # the master container's sh script
-    k8s_commands.py K8S_DIR worker-args     # the worker container's argv, one per line
+    k8s_commands.py DIR check
+    k8s_commands.py DIR master-script   # the master container's sh script
+    k8s_commands.py DIR worker-args     # the worker container's argv, one per line
 
-The check: kustomization lists the manifests; one master (StatefulSet of 1)
+The check: kustomization lists two manifests, the master's (a Service and a
+StatefulSet) and the workers' (a Deployment); one master (StatefulSet of 1)
 whose Service port, container port and bind port agree; workers connect
 to that Service and port; every file a command names under /keys, /config
 or /data is mounted there (and, for /keys, projected from the Secret).
@@ -37,8 +40,15 @@ def by_kind(docs, kind):
 def main():
     directory, what = sys.argv[1], sys.argv[2]
     kustomization = load(directory, "kustomization.yaml")[0]
-    master_docs = load(directory, "master.yaml")
-    worker_docs = load(directory, "workers.yaml")
+    resources = kustomization.get("resources", [])
+    if len(resources) != 2:
+        fail("kustomization.yaml must list the master's and the workers' "
+             "manifests")
+    manifests = [load(directory, name) for name in resources]
+    kinds = [{d.get("kind") for d in docs} for docs in manifests]
+    if "StatefulSet" in kinds[1]:
+        manifests.reverse()
+    master_docs, worker_docs = manifests
     service = by_kind(master_docs, "Service")
     master = by_kind(master_docs, "StatefulSet")
     workers = by_kind(worker_docs, "Deployment")
@@ -56,8 +66,6 @@ def main():
         print("\n".join(args))
         return
 
-    if sorted(kustomization["resources"]) != ["master.yaml", "workers.yaml"]:
-        fail("kustomization.yaml must list master.yaml and workers.yaml")
     if master["spec"]["replicas"] != 1:
         fail("the master must be a single replica (one master per store)")
     if master_container["command"][:2] != ["/bin/sh", "-c"]:

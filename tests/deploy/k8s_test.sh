@@ -5,7 +5,9 @@
 # worker with the cluster key is served, SIGTERM (a pod's termination)
 # leaves a resumable store, the next start resumes and finishes the run
 # identical to an uninterrupted one, and a start after that only keeps the
-# store available. No Kubernetes cluster is involved.
+# store available; the campaign overlay (deploy/k8s/campaign) the same for
+# a campaign of two drags, each store equal to its run made alone. No
+# Kubernetes cluster is involved.
 #
 #   tests/deploy/k8s_test.sh BIN_DIR
 set -euo pipefail
@@ -101,3 +103,64 @@ grep -q "has finished" "$work/master.log" ||
   fail "a start after the end did not keep the store available"
 kill -0 "$master" 2>/dev/null || fail "the finished pod's container exited"
 echo "k8s_test: a start after the end keeps the store available"
+kill -TERM "$master" 2>/dev/null || true
+
+# The campaign overlay (deploy/k8s/campaign): its master's script, with the
+# same workers, on a campaign of the small configuration at two drags.
+python3 "$commands" "$k8s/campaign" check ||
+  fail "the campaign's manifests are inconsistent"
+mkdir -p "$work/cconfig" "$work/cdata"
+cp "$work/config/run.txtpb" "$work/cconfig/run.txtpb"
+cat > "$work/cconfig/campaign.txtpb" <<'CAMPAIGN'
+runs {
+  name: "c"
+  config: "run.txtpb"
+  axes {
+    values { label: "d1" }
+    values { label: "d10" set: "model { physics { drag_normal: 10 } }" }
+  }
+}
+CAMPAIGN
+sed 's/^model { evaluation/model { physics { drag_normal: 10 } evaluation/' \
+  "$work/config/run.txtpb" > "$work/d10.txtpb"
+grep -q drag_normal "$work/d10.txtpb" || fail "no drag in the d10 configuration"
+"$bin/animat" evolve --config "$work/d10.txtpb" --db "$work/reference-d10.db" \
+  --workers 1 > "$work/reference-d10.log" 2>&1 || fail "the d10 reference failed"
+python3 "$commands" "$k8s/campaign" master-script |
+  sed -e "s#/data#$work/cdata#g" -e "s#/config/#$work/cconfig/#g" \
+      -e "s#/keys/#$work/keys/#g" -e "s#0\.0\.0\.0:5555#0.0.0.0:$port#g" \
+      -e "s#exec animat-master#exec $bin/animat-master#g" \
+  > "$work/campaign.sh"
+start_campaign() {
+  PATH="$bin:$PATH" sh "$work/campaign.sh" >> "$work/campaign.log" 2>&1 &
+  master=$!
+  pids+=("$master")
+}
+start_campaign
+wait_generations "$work/cdata/c-d1.db" 3
+kill -TERM "$master"
+status=0
+wait "$master" || status=$?
+[ "$status" -eq 0 ] || fail "the campaign's master exited $status on SIGTERM"
+[ "$(generations_done "$work/cdata/c-d1.db")" -lt "$small_config_generations" ] ||
+  fail "the campaign finished before SIGTERM"
+start_campaign
+status=0
+wait "$master" || status=$?
+[ "$status" -eq 0 ] || fail "the restarted campaign's master exited $status"
+grep -q "finished: 2 runs in" "$work/campaign.log" ||
+  fail "the campaign did not finish"
+[ "$(digest "$work/cdata/c-d1.db")" = "$(digest "$work/reference.db")" ] ||
+  fail "the campaign's run c-d1 differs from the run made alone"
+[ "$(digest "$work/cdata/c-d10.db")" = "$(digest "$work/reference-d10.db")" ] ||
+  fail "the campaign's run c-d10 differs from the run made alone"
+echo "k8s_test: a terminated and restarted campaign gave each run's store"
+start_campaign
+for _ in $(seq 100); do
+  grep -q "campaign in .* has finished" "$work/campaign.log" && break
+  sleep 0.1
+done
+grep -q "campaign in .* has finished" "$work/campaign.log" ||
+  fail "a start after the campaign's end did not keep the stores available"
+kill -0 "$master" 2>/dev/null || fail "the finished campaign's container exited"
+echo "k8s_test: a start after the campaign's end keeps the stores available"
