@@ -32,7 +32,8 @@ struct ActiveRun {
   std::unique_ptr<EvolutionRun> run;
   size_t config = 0;  // The dispatcher's index of its model configuration.
   EvaluationService* lane = nullptr;
-  Status status;
+  Status status;      // Run's; written by the run's thread before `done`.
+  Status lane_error;  // Its lane's (shared_evaluators.h); the pump's thread.
   std::atomic<bool> done{false};
   std::atomic<int> generation{0};  // Generations completed.
 };
@@ -186,9 +187,8 @@ void ServeRuns(const CampaignOptions& o, CampaignPlan* plan,
     for (size_t i = 0; i < plan->active.size(); ++i) {
       ActiveRun& r = *plan->active[i];
       all_done = all_done && r.done;
-      Status lane = shared.error(i);
-      if (!lane.ok() && r.status.ok()) r.status = lane;
-      if ((r.done && !r.status.ok()) || !lane.ok()) stop = true;
+      if (r.lane_error.ok()) r.lane_error = shared.error(i);
+      if ((r.done && !r.status.ok()) || !r.lane_error.ok()) stop = true;
     }
     if (signalled.load()) stop = true;
     line.MaybeSay(o.session.log);
@@ -227,7 +227,8 @@ Status Serve(const CampaignOptions& o, CampaignPlan* plan,
   ServeRuns(o, plan, dispatcher->get(), signalled);
   bool all_finished = true;
   for (const auto& run : plan->active) {
-    if (!run->status.ok()) return run->status.WithPrefix("run " + run->name);
+    const Status& failed = run->lane_error.ok() ? run->status : run->lane_error;
+    if (!failed.ok()) return failed.WithPrefix("run " + run->name);
     all_finished = all_finished && run->run->finished();
   }
   if (!all_finished) {
