@@ -82,6 +82,21 @@ void AddOptions(CLI::App& app, animat::SessionOptions& o, bool& resume,
                        "Print the build id, protocol and model versions");
 }
 
+// Appends the options that make a master listen as `o` does: keys,
+// --insecure, a heartbeat other than the default.
+void AddListenWords(const animat::SessionOptions& o,
+                    std::vector<std::string>* words) {
+  if (!o.curve_secret_file.empty()) {
+    words->insert(words->end(), {"--curve-secret", o.curve_secret_file,
+                                 "--curve-allow", o.curve_allow_file});
+  }
+  if (o.insecure) words->push_back("--insecure");
+  if (o.heartbeat_ms != animat::protocol::kHeartbeatMs) {
+    words->insert(words->end(),
+                  {"--heartbeat-ms", std::to_string(o.heartbeat_ms)});
+  }
+}
+
 // The command that continues the run with the same endpoint and keys,
 // starting `program` as this one was started (so that it runs as printed
 // from the same directory).
@@ -89,15 +104,7 @@ std::string ResumeCommand(const std::string& program,
                           const animat::SessionOptions& o) {
   std::vector<std::string> words = {program,   "--resume", "--db",
                                     o.db_path, "--bind",   o.bind};
-  if (!o.curve_secret_file.empty()) {
-    words.insert(words.end(), {"--curve-secret", o.curve_secret_file,
-                               "--curve-allow", o.curve_allow_file});
-  }
-  if (o.insecure) words.push_back("--insecure");
-  if (o.heartbeat_ms != animat::protocol::kHeartbeatMs) {
-    words.insert(words.end(),
-                 {"--heartbeat-ms", std::to_string(o.heartbeat_ms)});
-  }
+  AddListenWords(o, &words);
   return animat::CommandLine(words);
 }
 
@@ -109,15 +116,7 @@ std::string CampaignCommand(const std::string& program,
                             const animat::SessionOptions& o) {
   std::vector<std::string> words = {
       program, "--campaign", c.campaign_path, "--dir", c.dir, "--bind", o.bind};
-  if (!o.curve_secret_file.empty()) {
-    words.insert(words.end(), {"--curve-secret", o.curve_secret_file,
-                               "--curve-allow", o.curve_allow_file});
-  }
-  if (o.insecure) words.push_back("--insecure");
-  if (o.heartbeat_ms != animat::protocol::kHeartbeatMs) {
-    words.insert(words.end(),
-                 {"--heartbeat-ms", std::to_string(o.heartbeat_ms)});
-  }
+  AddListenWords(o, &words);
   return animat::CommandLine(words);
 }
 

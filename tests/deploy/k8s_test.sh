@@ -111,21 +111,8 @@ python3 "$commands" "$k8s/campaign" check ||
   fail "the campaign's manifests are inconsistent"
 mkdir -p "$work/cconfig" "$work/cdata"
 cp "$work/config/run.txtpb" "$work/cconfig/run.txtpb"
-cat > "$work/cconfig/campaign.txtpb" <<'CAMPAIGN'
-runs {
-  name: "c"
-  config: "run.txtpb"
-  axes {
-    values { label: "d1" }
-    values { label: "d10" set: "model { physics { drag_normal: 10 } }" }
-  }
-}
-CAMPAIGN
-sed 's/^model { evaluation/model { physics { drag_normal: 10 } evaluation/' \
-  "$work/config/run.txtpb" > "$work/d10.txtpb"
-grep -q drag_normal "$work/d10.txtpb" || fail "no drag in the d10 configuration"
-"$bin/animat" evolve --config "$work/d10.txtpb" --db "$work/reference-d10.db" \
-  --workers 1 > "$work/reference-d10.log" 2>&1 || fail "the d10 reference failed"
+write_two_drag_campaign "$work/cconfig/campaign.txtpb"
+run_d10_alone "$bin" "$work/config/run.txtpb" "$work/reference-d10.db"
 python3 "$commands" "$k8s/campaign" master-script |
   sed -e "s#/data#$work/cdata#g" -e "s#/config/#$work/cconfig/#g" \
       -e "s#/keys/#$work/keys/#g" -e "s#0\.0\.0\.0:5555#0.0.0.0:$port#g" \
@@ -150,10 +137,7 @@ wait "$master" || status=$?
 [ "$status" -eq 0 ] || fail "the restarted campaign's master exited $status"
 grep -q "finished: 2 runs in" "$work/campaign.log" ||
   fail "the campaign did not finish"
-[ "$(digest "$work/cdata/c-d1.db")" = "$(digest "$work/reference.db")" ] ||
-  fail "the campaign's run c-d1 differs from the run made alone"
-[ "$(digest "$work/cdata/c-d10.db")" = "$(digest "$work/reference-d10.db")" ] ||
-  fail "the campaign's run c-d10 differs from the run made alone"
+expect_two_drag_stores "$work/cdata" "$work/reference.db" "$work/reference-d10.db"
 echo "k8s_test: a terminated and restarted campaign gave each run's store"
 start_campaign
 for _ in $(seq 100); do

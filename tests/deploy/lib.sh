@@ -50,3 +50,38 @@ digest() {
            quote(best_fitness), quote(mean_fitness), quote(median_fitness)
     FROM generations ORDER BY generation;" | sha256sum
 }
+
+# The deploy tests' campaign: the small configuration (run.txtpb beside it)
+# at two drags, runs c-d1 and c-d10.
+write_two_drag_campaign() {  # FILE
+  cat > "$1" <<'CAMPAIGN'
+runs {
+  name: "c"
+  config: "run.txtpb"
+  axes {
+    values { label: "d1" }
+    values { label: "d10" set: "model { physics { drag_normal: 10 } }" }
+  }
+}
+CAMPAIGN
+}
+
+# Run c-d10 made alone: the small configuration RUN_CONFIG at drag 10, into
+# STORE (with animat evolve from BIN).
+run_d10_alone() {  # BIN RUN_CONFIG STORE
+  local config="${3%.db}.txtpb"
+  sed 's/^model { evaluation/model { physics { drag_normal: 10 } evaluation/' \
+    "$2" > "$config"
+  grep -q drag_normal "$config" || fail "no drag in the d10 configuration"
+  "$1/animat" evolve --config "$config" --db "$3" --workers 1 \
+    > "${3%.db}.log" 2>&1 || fail "the d10 reference run failed"
+}
+
+# Each store of the two-drag campaign in DIR equals its run made alone
+# (the small configuration's REFERENCE, and REFERENCE_D10).
+expect_two_drag_stores() {  # DIR REFERENCE REFERENCE_D10
+  [ "$(digest "$1/c-d1.db")" = "$(digest "$2")" ] ||
+    fail "the campaign's run c-d1 differs from the run made alone"
+  [ "$(digest "$1/c-d10.db")" = "$(digest "$3")" ] ||
+    fail "the campaign's run c-d10 differs from the run made alone"
+}

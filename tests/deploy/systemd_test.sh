@@ -108,21 +108,8 @@ echo "systemd_test: the restarted run equals the uninterrupted one"
 # 3. The campaign's unit: two runs (the small configuration at two drags),
 # stopped with SIGTERM mid-way, started again to the end, with the same
 # worker.
-cat > "$work/campaign.txtpb" <<'CAMPAIGN'
-runs {
-  name: "c"
-  config: "run.txtpb"
-  axes {
-    values { label: "d1" }
-    values { label: "d10" set: "model { physics { drag_normal: 10 } }" }
-  }
-}
-CAMPAIGN
-sed 's/^model { evaluation/model { physics { drag_normal: 10 } evaluation/' \
-  "$work/run.txtpb" > "$work/d10.txtpb"
-grep -q drag_normal "$work/d10.txtpb" || fail "no drag in the d10 configuration"
-"$bin/animat" evolve --config "$work/d10.txtpb" --db "$work/reference-d10.db" \
-  --workers 1 > "$work/reference-d10.log" 2>&1 || fail "the d10 reference failed"
+write_two_drag_campaign "$work/campaign.txtpb"
+run_d10_alone "$bin" "$work/run.txtpb" "$work/reference-d10.db"
 campaign_cmd=$(exec_start animat-campaign.service)
 export ANIMAT_CAMPAIGN="$work/campaign.txtpb" ANIMAT_DIR="$work/campaign"
 start_campaign() {
@@ -145,10 +132,7 @@ wait "$master" || status=$?
 [ "$status" -eq 0 ] || fail "the restarted campaign exited $status"
 grep -q "finished: 2 runs in" "$work/campaign.log" ||
   fail "the campaign did not finish"
-[ "$(digest "$work/campaign/c-d1.db")" = "$(digest "$work/reference.db")" ] ||
-  fail "the campaign's run c-d1 differs from the run made alone"
-[ "$(digest "$work/campaign/c-d10.db")" = "$(digest "$work/reference-d10.db")" ] ||
-  fail "the campaign's run c-d10 differs from the run made alone"
+expect_two_drag_stores "$work/campaign" "$work/reference.db" "$work/reference-d10.db"
 echo "systemd_test: the stopped and restarted campaign gave each run's store"
 
 kill -TERM "$worker"
