@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <thread>
 
 #include "common/evaluation/evaluator.h"
 #include "common/genome/genome_proto.h"
@@ -44,21 +45,35 @@ v1::WorkResult EvaluateItem(const v1::WorkItem& item,
 
 namespace {
 
-v1::WorkResult NotEvaluated(const v1::WorkItem& item) {
+v1::WorkResult NotEvaluated(const v1::WorkItem& item, double wall_seconds) {
   v1::WorkResult out;
   out.set_individual(item.individual());
   out.set_genome_hash(item.genome_hash());
   out.mutable_result()->set_status(v1::EvaluationResult::NOT_EVALUATED);
   out.mutable_result()->set_reason("null-evaluation worker");
+  out.set_wall_seconds(wall_seconds);
   return out;
+}
+
+// A null evaluation that takes its item's delay: slept on the calling
+// thread, its measured length the result's wall time.
+v1::WorkResult DelayedNotEvaluated(const v1::WorkItem& item,
+                                   const NullDelay& delay) {
+  const auto start = std::chrono::steady_clock::now();
+  std::this_thread::sleep_for(std::chrono::duration<double>(
+      NullDelaySeconds(delay, item.genome_hash())));
+  const std::chrono::duration<double> took =
+      std::chrono::steady_clock::now() - start;
+  return NotEvaluated(item, took.count());
 }
 
 }  // namespace
 
-EvaluationPool::EvaluationPool(int threads, bool null_evaluation)
-    : null_evaluation_(null_evaluation) {
+EvaluationPool::EvaluationPool(int threads, bool null_evaluation,
+                               NullDelay null_delay)
+    : null_evaluation_(null_evaluation), null_delay_(null_delay) {
   wakeup_fd_ = eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
-  if (!null_evaluation_) {
+  if (!null_evaluation_ || !null_delay_.none()) {
     for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { Loop(); });
   }
 }
@@ -76,8 +91,8 @@ EvaluationPool::~EvaluationPool() {
 
 void EvaluationPool::Submit(v1::WorkItem item,
                             std::shared_ptr<const ModelConfig> config) {
-  if (null_evaluation_) {
-    Finish(NotEvaluated(item), /*was_running=*/false);
+  if (null_evaluation_ && null_delay_.none()) {
+    Finish(NotEvaluated(item, 0), /*was_running=*/false);
     return;
   }
   {
@@ -100,7 +115,9 @@ void EvaluationPool::Loop() {
       queue_.pop_front();
       ++running_;
     }
-    Finish(EvaluateItem(item, *config), /*was_running=*/true);
+    Finish(null_evaluation_ ? DelayedNotEvaluated(item, null_delay_)
+                            : EvaluateItem(item, *config),
+           /*was_running=*/true);
   }
 }
 

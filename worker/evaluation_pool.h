@@ -20,6 +20,7 @@
 
 #include "animat/v1/protocol.pb.h"
 #include "common/evaluation/model_config.h"
+#include "worker/null_delay.h"
 
 namespace animat {
 
@@ -33,8 +34,10 @@ v1::WorkResult EvaluateItem(const v1::WorkItem& item,
 class EvaluationPool {
  public:
   // `threads` >= 1. With `null_evaluation` nothing is simulated: every item
-  // finishes at once as NOT_EVALUATED (dispatch benchmarks).
-  EvaluationPool(int threads, bool null_evaluation);
+  // finishes as NOT_EVALUATED (dispatch benchmarks), at once when
+  // `null_delay` is none, otherwise after its delay (null_delay.h) on one of
+  // the threads, with that time as its wall_seconds.
+  EvaluationPool(int threads, bool null_evaluation, NullDelay null_delay = {});
   // Finishes the evaluations under way, drops queued ones, joins.
   ~EvaluationPool();
   EvaluationPool(const EvaluationPool&) = delete;
@@ -64,6 +67,7 @@ class EvaluationPool {
   void Finish(v1::WorkResult result, bool was_running);
 
   const bool null_evaluation_;
+  const NullDelay null_delay_;
   int wakeup_fd_ = -1;
   mutable std::mutex mutex_;
   std::condition_variable ready_;

@@ -64,8 +64,19 @@ void AddOptions(CLI::App& app, animat::WorkerOptions& options, KeyFiles& keys) {
                  "Exit after this many seconds without a master (0: never)")
       ->check(CLI::Range(0, 100000000))
       ->capture_default_str();
-  app.add_flag("--null-evaluation", options.null_evaluation,
-               "Evaluate nothing; answer at once (dispatch benchmarks)");
+  auto* null_evaluation =
+      app.add_flag("--null-evaluation", options.null_evaluation,
+                   "Evaluate nothing; answer at once (dispatch benchmarks)");
+  app.add_option("--null-delay-ms", options.null_delay.mean_ms,
+                 "With --null-evaluation: take this long on average per "
+                 "item, on the worker's threads (benchmarks)")
+      ->check(CLI::Range(0.0, 60000.0))
+      ->needs(null_evaluation);
+  app.add_option("--null-delay-cv", options.null_delay.cv,
+                 "With --null-delay-ms: the delays' coefficient of "
+                 "variation (log-normal, a pure function of the genome)")
+      ->check(CLI::Range(0.0, 10.0))
+      ->needs(null_evaluation);
   auto* server =
       app.add_option("--curve-server", keys.server,
                      "CurveZMQ: the master's public key file (animat keygen)");

@@ -202,8 +202,8 @@ void Worker::Session::Welcomed(const v1::Welcome& welcome) {
   // times it fits an int.
   heartbeat_ms_ = static_cast<int>(welcome.heartbeat_ms());
   if (!pool()) {
-    pool() = std::make_unique<EvaluationPool>(options_.threads,
-                                              options_.null_evaluation);
+    pool() = std::make_unique<EvaluationPool>(
+        options_.threads, options_.null_evaluation, options_.null_delay);
   }
   options_.log("welcomed by " + options_.endpoint + " (" +
                std::to_string(options_.threads) + " threads)");

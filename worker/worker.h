@@ -20,6 +20,7 @@
 #include "common/base/log.h"
 #include "common/protocol/protocol.h"
 #include "worker/config_cache.h"
+#include "worker/null_delay.h"
 
 namespace zmq {
 class context_t;
@@ -36,6 +37,8 @@ struct WorkerOptions {
   // Simulate nothing and answer every item at once (dispatch benchmarks);
   // the master must accept such workers explicitly.
   bool null_evaluation = false;
+  // How long each null evaluation takes (null_delay.h); none by default.
+  NullDelay null_delay;
   // Heartbeat interval until the master's Welcome sets its own.
   int heartbeat_ms = protocol::kHeartbeatMs;
   // Reconnection backoff after the master falls silent: doubles from min

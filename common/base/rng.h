@@ -24,6 +24,7 @@ enum class StreamPurpose : uint32_t {
   kCrossover = 4,     // Crossover points.
   kMutation = 5,      // Mutations of an offspring's genome.
   kNullFitness = 6,   // Stand-in fitness of null evaluations (benchmarks).
+  kNullDelay = 7,     // Delays of null evaluations (benchmarks).
 };
 
 // One Philox4x32-10 block: 4 output words for a 128-bit counter and a
