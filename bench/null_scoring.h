@@ -1,14 +1,15 @@
-// The master benchmark's evaluation service (master/dispatch/
-// evaluation_service.h): a Dispatcher whose null-evaluation workers
-// simulate nothing, with each of their results scored here as OK with the
-// stand-in fitness NullEvaluationFitness(seed, id), so that an
+// The master benchmarks' evaluation service (master/dispatch/
+// evaluation_service.h): a service (a Dispatcher, or a campaign's lane of
+// one) whose null-evaluation workers simulate nothing, with each of their
+// results scored here as OK with the stand-in fitness
+// NullEvaluationFitness(seed, id), so that an
 // EvolutionRun served through it selects generation after generation and
 // records every result by the same store writes as a real one. No command
 // line reaches it: animat-master serves its run with the Dispatcher
 // itself, and a run refuses null results (evolution_run.h).
 //
 // Header-only, so that the run tests use it without the benchmarks being
-// built. Not thread-safe, like the Dispatcher it wraps.
+// built. Not thread-safe, like the service it wraps.
 #ifndef ANIMAT_BENCH_NULL_SCORING_H_
 #define ANIMAT_BENCH_NULL_SCORING_H_
 
@@ -16,7 +17,7 @@
 #include <vector>
 
 #include "common/base/rng.h"
-#include "master/dispatch/dispatcher.h"
+#include "master/dispatch/evaluation_service.h"
 
 namespace animat::bench {
 
@@ -28,19 +29,20 @@ inline double NullEvaluationFitness(uint64_t seed, uint64_t id) {
 
 class NullScoring final : public EvaluationService {
  public:
-  // `dispatcher` (accepting null workers) must outlive this object.
-  NullScoring(Dispatcher* dispatcher, uint64_t seed)
-      : dispatcher_(dispatcher), seed_(seed) {}
+  // `service` (its dispatcher accepting null workers) must outlive this
+  // object.
+  NullScoring(EvaluationService* service, uint64_t seed)
+      : service_(service), seed_(seed) {}
 
   void Submit(uint64_t individual, const v1::Genome& genome) override {
-    dispatcher_->Submit(individual, genome);
+    service_->Submit(individual, genome);
   }
   void Submit(uint64_t individual,
               const protocol::SerializedGenome& genome) override {
-    dispatcher_->Submit(individual, genome);
+    service_->Submit(individual, genome);
   }
   std::vector<Completion> Poll(int timeout_ms) override {
-    std::vector<Completion> done = dispatcher_->Poll(timeout_ms);
+    std::vector<Completion> done = service_->Poll(timeout_ms);
     for (Completion& c : done) {
       if (!c.null_evaluation) continue;
       c.result.Clear();
@@ -51,13 +53,13 @@ class NullScoring final : public EvaluationService {
     return done;
   }
   void Acknowledge(const std::vector<uint64_t>& individuals) override {
-    dispatcher_->Acknowledge(individuals);
+    service_->Acknowledge(individuals);
   }
-  size_t pending() const override { return dispatcher_->pending(); }
-  const Clock& clock() const override { return dispatcher_->clock(); }
+  size_t pending() const override { return service_->pending(); }
+  const Clock& clock() const override { return service_->clock(); }
 
  private:
-  Dispatcher* dispatcher_;
+  EvaluationService* service_;
   uint64_t seed_;
 };
 

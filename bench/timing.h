@@ -15,8 +15,9 @@ inline double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// User + system CPU seconds of this process (RUSAGE_SELF) or of its
-// waited-for children (RUSAGE_CHILDREN).
+// User + system CPU seconds of this process (RUSAGE_SELF), of the calling
+// thread (RUSAGE_THREAD) or of the process's waited-for children
+// (RUSAGE_CHILDREN).
 inline double CpuSeconds(int who) {
   rusage usage = {};
   getrusage(who, &usage);

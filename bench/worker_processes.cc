@@ -46,12 +46,15 @@ WorkerProcesses::WorkerProcesses(std::string binary, std::string log,
       log_(std::move(log)),
       dispatcher_(dispatcher) {}
 
-bool WorkerProcesses::Spawn(int count, int threads, bool null_evaluation) {
+bool WorkerProcesses::Spawn(int count, int threads, bool null_evaluation,
+                            double null_delay_ms, double null_delay_cv) {
   WorkerOptions options;
   options.binary = binary_;
   options.endpoint = dispatcher_->endpoint();
   options.threads = threads;
   options.null_evaluation = null_evaluation;
+  options.null_delay_ms = null_delay_ms;
+  options.null_delay_cv = null_delay_cv;
   options.log_path = log_;
   const Status status = workers_.Start(count, options);
   if (!status.ok()) {

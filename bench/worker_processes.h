@@ -33,9 +33,13 @@ class WorkerProcesses {
 
   // Starts `count` workers of `threads` threads connecting to the
   // dispatcher's endpoint and serves the dispatcher until all have said
-  // hello. False, having said why on stderr, when one cannot start, exits
-  // (a refused worker exits 3) or they do not join within 10 s.
-  bool Spawn(int count, int threads, bool null_evaluation);
+  // hello. Null-evaluation workers take `null_delay_ms` per item on average
+  // with that coefficient of variation `null_delay_cv` (0: answer at once;
+  // animat-worker --null-delay-ms). False, having said why on stderr, when
+  // one cannot start, exits (a refused worker exits 3) or they do not join
+  // within 10 s.
+  bool Spawn(int count, int threads, bool null_evaluation,
+             double null_delay_ms = 0, double null_delay_cv = 0);
 
   // SIGTERM to every worker, serving the dispatcher meanwhile so goodbyes
   // are heard; SIGKILL to those still running after 5 s.

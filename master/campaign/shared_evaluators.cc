@@ -89,6 +89,24 @@ EvaluationService* SharedEvaluators::AddLane(size_t config) {
 }
 
 void SharedEvaluators::Pump(int timeout_ms) {
+  // Slices of one millisecond of the service's polling (counted, not
+  // timed: the service keeps the time).
+  for (int slice = 0;; ++slice) {
+    HandOver();
+    std::vector<Completion> done = service_->Poll(timeout_ms > 0 ? 1 : 0);
+    if (!done.empty()) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      for (Completion& completion : done) {
+        const uint64_t lane = completion.individual >> kIdBits;
+        if (lane < lanes_.size()) lanes_[lane]->Deliver(std::move(completion));
+      }
+      return;
+    }
+    if (slice + 1 >= timeout_ms) return;
+  }
+}
+
+void SharedEvaluators::HandOver() {
   std::deque<Submission> submitted;
   std::vector<uint64_t> acknowledged;
   {
@@ -100,13 +118,6 @@ void SharedEvaluators::Pump(int timeout_ms) {
     service_->SubmitUnder(s.config, s.key, s.genome);
   }
   if (!acknowledged.empty()) service_->Acknowledge(acknowledged);
-  std::vector<Completion> done = service_->Poll(timeout_ms);
-  if (done.empty()) return;
-  std::lock_guard<std::mutex> lock(mutex_);
-  for (Completion& completion : done) {
-    const uint64_t lane = completion.individual >> kIdBits;
-    if (lane < lanes_.size()) lanes_[lane]->Deliver(std::move(completion));
-  }
 }
 
 Status SharedEvaluators::error(size_t index) const {

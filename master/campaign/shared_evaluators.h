@@ -56,7 +56,10 @@ class SharedEvaluators {
   EvaluationService* AddLane(size_t config);
 
   // Hands the lanes' submissions and acknowledgements to the service,
-  // polls it for up to `timeout_ms` and routes the completions. The
+  // polls it for up to `timeout_ms` and routes the completions, returning
+  // as soon as some came. The service is polled a millisecond at a time,
+  // with what the lanes submitted meanwhile handed over between, so that a
+  // submission waits about a millisecond, not the whole timeout. The
   // pumping thread.
   void Pump(int timeout_ms);
 
@@ -66,6 +69,9 @@ class SharedEvaluators {
 
  private:
   class Lane;
+
+  // Hands the lanes' submissions and acknowledgements to the service.
+  void HandOver();
 
   mutable std::mutex mutex_;
   struct Submission {

@@ -8,6 +8,7 @@
 
 #include <cerrno>
 #include <climits>
+#include <cstdio>
 #include <cstring>
 #include <thread>
 
@@ -135,6 +136,17 @@ std::string WorkerBesideThisProgram() {
   return path.substr(0, path.rfind('/') + 1) + "animat-worker";
 }
 
+namespace {
+
+// `value` as text that reads back as the same double.
+std::string ExactText(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.17g", value);
+  return text;
+}
+
+}  // namespace
+
 std::vector<std::string> WorkerArgv(const WorkerOptions& options) {
   std::vector<std::string> argv = {options.binary, "--connect",
                                    options.endpoint, "--threads",
@@ -144,6 +156,12 @@ std::vector<std::string> WorkerArgv(const WorkerOptions& options) {
     argv.push_back(std::to_string(options.heartbeat_ms));
   }
   if (options.null_evaluation) argv.push_back("--null-evaluation");
+  if (options.null_delay_ms > 0) {
+    argv.push_back("--null-delay-ms");
+    argv.push_back(ExactText(options.null_delay_ms));
+    argv.push_back("--null-delay-cv");
+    argv.push_back(ExactText(options.null_delay_cv));
+  }
   if (options.exit_when_done) argv.push_back("--exit-when-done");
   if (options.idle_timeout_s > 0) {
     argv.push_back("--idle-timeout");

@@ -77,6 +77,10 @@ struct WorkerOptions {
   int threads = 1;
   int heartbeat_ms = 0;  // Until the master's welcome; 0: the default.
   bool null_evaluation = false;
+  // With null_evaluation: each item's mean delay (ms; 0: none) and its
+  // coefficient of variation (animat-worker --null-delay-ms, -cv).
+  double null_delay_ms = 0;
+  double null_delay_cv = 0;
   bool exit_when_done = false;  // Exit when the master's run is over.
   // Exit after this many seconds without a master (0: never), so that
   // workers outlive a master killed with SIGKILL only so long.

@@ -1,5 +1,6 @@
 // Every flag of every developer tool (bench/: animat-accuracy, animat-floors,
-// animat-dispatch-bench, animat-master-bench on CLI11; animat-bench,
+// animat-dispatch-bench, animat-master-bench, animat-campaign-bench on CLI11;
+// animat-bench,
 // animat-eigen-bench, animat-lanes-bench on Google Benchmark), given a
 // malformed value while the rest of the command line is valid: the tool exits 1
 // or 2 with a message, never by a signal or an exception reaching terminate,
@@ -145,6 +146,29 @@ TEST_F(ToolsFlagsTest, MasterBench) {
   EXPECT_FALSE(std::filesystem::exists(Path("missing")));
 }
 
+TEST_F(ToolsFlagsTest, CampaignBench) {
+  std::map<std::string, std::vector<std::string>> values = WorkerFlags();
+  values["--arrangement"] = {"", "neither", "Campaign"};
+  TryCli11Tool("animat-campaign-bench",
+               {"--runs", "1", "--population", "4", "--generations", "1",
+                "--slots", "1", "--delay-ms", "0", "--arrangement", "campaign"},
+               values,
+               {{"--runs", {"0", "65"}},
+                {"--population", {"3"}},
+                {"--generations", {"0"}},
+                {"--slots", {"0", "65537"}},
+                {"--delay-ms", {"-1", "60001"}},
+                {"--delay-cv", {"-0.5", "11"}},
+                {"--repeats", {"0", "101"}}});
+  // Slots that do not split evenly over the runs.
+  const Outcome uneven =
+      RunTool("animat-campaign-bench", Join({"--runs", "3", "--slots", "10"}));
+  EXPECT_EQ(uneven.exit_code, 2) << uneven.output;
+  EXPECT_NE(uneven.output.find("--slots: 10 is not a multiple of --runs (3)"),
+            std::string::npos)
+      << uneven.output;
+}
+
 // Every flag of a Google Benchmark tool's usage ("[--benchmark_x=<...>]"),
 // each with the malformed values of its kind of value.
 void TryGoogleBenchmarkTool(const std::string& program,
@@ -218,19 +242,20 @@ TEST_F(ToolsFlagsTest, LanesBench) {
 TEST_F(ToolsFlagsTest, UsageErrorsExit2AndHelpExits0) {
   for (const std::string program :
        {"animat-accuracy", "animat-floors", "animat-dispatch-bench",
-        "animat-master-bench", "animat-bench", "animat-eigen-bench",
-        "animat-lanes-bench"}) {
+        "animat-master-bench", "animat-campaign-bench", "animat-bench",
+        "animat-eigen-bench", "animat-lanes-bench"}) {
     SCOPED_TRACE(program);
     EXPECT_EQ(RunTool(program, "--help").exit_code, 0);
   }
   for (const std::string program :
        {"animat-accuracy", "animat-floors", "animat-dispatch-bench",
-        "animat-master-bench"}) {
+        "animat-master-bench", "animat-campaign-bench"}) {
     SCOPED_TRACE(program);
     EXPECT_EQ(RunTool(program, "--no-such-flag").exit_code, 2);
   }
   for (const std::string program :
-       {"animat-dispatch-bench", "animat-master-bench"}) {
+       {"animat-dispatch-bench", "animat-master-bench",
+        "animat-campaign-bench"}) {
     const Outcome run = RunTool(program, Join({"--worker-log", ""}));
     EXPECT_EQ(run.exit_code, 2) << run.output;
     EXPECT_NE(run.output.find(program + ": --worker-log: an empty value"),

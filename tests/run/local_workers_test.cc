@@ -169,6 +169,16 @@ TEST_F(LocalWorkersTest, AWorkersCommandLineSaysWhatItsOptionsSay) {
                 "/opt/animat-worker", "--connect", "tcp://10.0.0.1:5555",
                 "--threads", "4", "--heartbeat-ms", "100", "--null-evaluation",
                 "--exit-when-done", "--idle-timeout", "60"}));
+  options.exit_when_done = false;
+  options.idle_timeout_s = 0;
+  options.heartbeat_ms = 0;
+  options.null_delay_ms = 12.5;
+  options.null_delay_cv = 0.1;
+  EXPECT_EQ(WorkerArgv(options),
+            (std::vector<std::string>{
+                "/opt/animat-worker", "--connect", "tcp://10.0.0.1:5555",
+                "--threads", "4", "--null-evaluation", "--null-delay-ms",
+                "12.5", "--null-delay-cv", "0.10000000000000001"}));
 }
 
 TEST_F(LocalWorkersTest, WorkersThatExitAreReportedAndDropped) {
