@@ -96,6 +96,31 @@ TEST(CampaignFileTest, TheExampleCampaignExpandsAsDocumented) {
   EXPECT_EQ(runs->back().config.model().physics().drag_normal(), 0.1);
 }
 
+// The energy and guidance campaign names its runs as scripts/seeded_runs.sh
+// did, each with its configuration file's fields.
+TEST(CampaignFileTest, TheEnergyAndGuidanceCampaignHasTheirRuns) {
+  Result<std::vector<CampaignRun>> runs =
+      ReadCampaignFile(std::string(ANIMAT_SOURCE_DIR) +
+                       "/configs/campaigns/energy-guidance.txtpb");
+  ASSERT_TRUE(runs.ok()) << runs.status().ToString();
+  std::vector<std::string> names;
+  for (const CampaignRun& run : *runs) names.push_back(run.name);
+  EXPECT_EQ(names, (std::vector<std::string>{
+                       "energy-dn1-seed1", "energy-dn1-seed2",
+                       "energy-dn1-seed3", "guidance-seed1", "guidance-seed2",
+                       "guidance-seed3"}));
+  const v1::RunConfig& energy = runs->at(1).config;
+  EXPECT_EQ(energy.model().evaluation().fitness(),
+            v1::EvaluationConfig::DISTANCE_WITHIN_ENERGY_BUDGET);
+  EXPECT_EQ(energy.model().physics().drag_normal(), 1.0);
+  EXPECT_EQ(energy.evolution().seed(), 2u);
+  EXPECT_EQ(energy.evolution().generations(), 150);
+  const v1::RunConfig& guidance = runs->at(5).config;
+  EXPECT_TRUE(guidance.model().guidance().enabled());
+  EXPECT_EQ(guidance.evolution().seed(), 3u);
+  EXPECT_EQ(guidance.evolution().generations(), 100);
+}
+
 // The replication's campaign names its runs as scripts/replicate.sh did,
 // with the same fields.
 TEST(CampaignFileTest, TheReplicationCampaignHasTheReplicationsRuns) {
