@@ -105,10 +105,10 @@ TEST(CampaignFileTest, TheEnergyAndGuidanceCampaignHasTheirRuns) {
   ASSERT_TRUE(runs.ok()) << runs.status().ToString();
   std::vector<std::string> names;
   for (const CampaignRun& run : *runs) names.push_back(run.name);
-  EXPECT_EQ(names, (std::vector<std::string>{
-                       "energy-dn1-seed1", "energy-dn1-seed2",
-                       "energy-dn1-seed3", "guidance-seed1", "guidance-seed2",
-                       "guidance-seed3"}));
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"energy-dn1-seed1", "energy-dn1-seed2",
+                                      "energy-dn1-seed3", "guidance-seed1",
+                                      "guidance-seed2", "guidance-seed3"}));
   const v1::RunConfig& energy = runs->at(1).config;
   EXPECT_EQ(energy.model().evaluation().fitness(),
             v1::EvaluationConfig::DISTANCE_WITHIN_ENERGY_BUDGET);
