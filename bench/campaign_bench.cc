@@ -183,7 +183,8 @@ DispatcherOptions DispatcherOptionsFor(const Options& o) {
   return d;
 }
 
-// Makes run `index`'s store in `dir` and starts its run.
+// Makes each run's store in `dir` (run1.db, run2.db, ...) and starts its
+// run.
 Status OpenRuns(const Options& o, const std::string& dir,
                 std::vector<std::unique_ptr<BenchRun>>* runs) {
   const LogSink log = o.verbose ? Prefixed("master", StderrSink)
