@@ -5,6 +5,7 @@ library only (no SciPy on the machines the project targets):
   wilson(k, n)          95% Wilson score interval of a proportion k/n
   fisher_exact(table)   two-sided Fisher exact test of a 2x2 table
   kruskal_wallis(*xs)   Kruskal-Wallis H (ties corrected) and its p value
+  holm(ps)              Holm's step-down adjustment of a family of p values
   chi2_sf(x, df)        the chi-square survival function
 
 Each is checked against published values in tests/scripts/stats_test.py.
@@ -128,3 +129,17 @@ def kruskal_wallis(*groups):
         r * r / len(g) for r, g in zip(rank_sums, samples)) - 3 * (n + 1)
     h /= correction
     return (h, chi2_sf(h, len(samples) - 1))
+
+
+def holm(p_values):
+    """Holm's step-down adjustment of a family of p values (the same
+    order back): each adjusted p is at least its raw p, never above 1,
+    and never below the adjusted p of a smaller raw p."""
+    order = sorted(range(len(p_values)), key=lambda i: p_values[i])
+    m = len(p_values)
+    adjusted = [0.0] * m
+    running = 0.0
+    for rank, i in enumerate(order):
+        running = max(running, min(1.0, (m - rank) * p_values[i]))
+        adjusted[i] = running
+    return adjusted

@@ -62,6 +62,18 @@ class StatsTest(unittest.TestCase):
         with self.assertRaises(ValueError):
             stats.kruskal_wallis([1, 2])
 
+    def test_holm(self):
+        # As R's p.adjust(p, "holm"), worked by hand: sorted p times
+        # m, m - 1, ..., then a running maximum, capped at 1.
+        adjusted = stats.holm([0.01, 0.02, 0.03, 0.04, 0.05])
+        for got, want in zip(adjusted, [0.05, 0.08, 0.09, 0.09, 0.09]):
+            self.assertAlmostEqual(got, want, places=12)
+        adjusted = stats.holm([0.04, 0.01, 0.5])
+        for got, want in zip(adjusted, [0.08, 0.03, 0.5]):
+            self.assertAlmostEqual(got, want, places=12)
+        self.assertEqual(stats.holm([0.6, 0.7]), [1.0, 1.0])
+        self.assertEqual(stats.holm([]), [])
+
 
 if __name__ == '__main__':
     unittest.main()
