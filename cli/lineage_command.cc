@@ -74,6 +74,7 @@ int Best(const Options& o) {
       std::printf("max_overlap: %s\n",
                   ShortestDouble(*best->max_overlap).c_str());
     }
+    if (!best->isa.empty()) std::printf("isa: %s\n", best->isa.c_str());
     if (!best->source_distances.empty()) {
       std::string list;
       for (double d : best->source_distances) {

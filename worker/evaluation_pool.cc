@@ -9,9 +9,26 @@
 
 #include "common/evaluation/evaluator.h"
 #include "common/genome/genome_proto.h"
+#include "common/kernels/isa.h"
 #include "common/protocol/protocol.h"
 
 namespace animat {
+
+namespace {
+
+v1::WorkResult::Isa IsaToProto(Isa isa) {
+  switch (isa) {
+    case Isa::kBaseline:
+      return v1::WorkResult::BASELINE;
+    case Isa::kAvx2:
+      return v1::WorkResult::AVX2;
+    case Isa::kAvx512:
+      return v1::WorkResult::AVX512;
+  }
+  return v1::WorkResult::ISA_UNSPECIFIED;
+}
+
+}  // namespace
 
 v1::WorkResult EvaluateItem(const v1::WorkItem& item,
                             const ModelConfig& config) {
@@ -40,6 +57,7 @@ v1::WorkResult EvaluateItem(const v1::WorkItem& item,
   }
   *out.mutable_result() = EvaluationResultToProto(result);
   out.set_wall_seconds(took.count());
+  out.set_isa(IsaToProto(ActiveIsa()));
   return out;
 }
 

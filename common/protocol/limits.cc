@@ -269,6 +269,9 @@ Status CheckWorkResult(const v1::WorkResult& r) {
     status = Status::InvalidArgument("wall time " +
                                      ShortestDouble(r.wall_seconds()));
   }
+  if (status.ok() && !v1::WorkResult::Isa_IsValid(r.isa())) {
+    status = OutOfRange("isa", std::to_string(r.isa()), "[0, 3]");
+  }
   return status;
 }
 

@@ -29,7 +29,11 @@ struct Completion {
   // a suspect evaluated alone (isolation.h).
   std::string worker;
   double wall_seconds = 0;  // On the worker.
-  int attempts = 0;         // Dispatches that ended without a result.
+  // The instruction-set path that evaluated it ("baseline", "avx2",
+  // "avx512"); empty when not known (nothing simulated, a crash, an older
+  // worker).
+  std::string isa;
+  int attempts = 0;  // Dispatches that ended without a result.
   // From a worker in null-evaluation mode (benchmarks only): the result is
   // NOT_EVALUATED and nothing was simulated.
   bool null_evaluation = false;

@@ -1,5 +1,6 @@
 #include "master/dispatch/lease_scheduler.h"
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <utility>
 
@@ -21,6 +22,24 @@ int CreditCap(int threads) {
 // this worker.
 std::string WorkerName(const v1::Hello& hello) {
   return ForeignText(hello.host(), 64) + ":" + std::to_string(hello.pid());
+}
+
+// A checked result (protocol::CheckWorkResult) as a completion, its
+// attempts still to count; the path's name in lower case ("avx512"), empty
+// when unspecified.
+Completion FromWorker(v1::WorkResult r, std::string evaluator,
+                      bool null_evaluation) {
+  Completion completion;
+  completion.individual = r.individual();
+  completion.result = std::move(*r.mutable_result());
+  completion.worker = std::move(evaluator);
+  completion.wall_seconds = r.wall_seconds();
+  if (r.isa() != v1::WorkResult::ISA_UNSPECIFIED) {
+    completion.isa = v1::WorkResult::Isa_Name(r.isa());
+    for (char& c : completion.isa) c = static_cast<char>(std::tolower(c));
+  }
+  completion.null_evaluation = null_evaluation;
+  return completion;
 }
 
 }  // namespace
@@ -260,8 +279,7 @@ void LeaseScheduler::Collect(const std::string& identity, WorkerState& worker,
     } else {
       Unqueue(r.individual());
     }
-    Complete(r.individual(), r.result(), worker.name, r.wall_seconds(),
-             worker.null_evaluation, done);
+    Complete(FromWorker(r, worker.name, worker.null_evaluation), done);
     if (options_.acknowledge_on_receipt) {
       forget->add_individuals(r.individual());
     } else {
@@ -520,9 +538,10 @@ void LeaseScheduler::CollectIsolated(std::vector<Completion>* done) {
         options_.log(which + " evaluated alone: " +
                      v1::EvaluationResult::Status_Name(
                          outcome.result.result().status()));
-        Complete(id, std::move(*outcome.result.mutable_result()),
-                 std::move(outcome.evaluator), outcome.result.wall_seconds(),
-                 /*null_evaluation=*/false, done);
+        Complete(
+            FromWorker(std::move(outcome.result), std::move(outcome.evaluator),
+                       /*null_evaluation=*/false),
+            done);
         continue;
       }
       outcome.how = "an invalid result: " + valid.message();
@@ -536,8 +555,11 @@ void LeaseScheduler::CollectIsolated(std::vector<Completion>* done) {
       options_.log(which + " crashed alone too (" + outcome.how +
                    "): recorded as crashed");
       ++stats_.crashed;
-      Complete(id, std::move(crashed), std::move(outcome.evaluator), 0.0,
-               /*null_evaluation=*/false, done);
+      Completion completion;
+      completion.individual = id;
+      completion.result = std::move(crashed);
+      completion.worker = std::move(outcome.evaluator);
+      Complete(std::move(completion), done);
       continue;
     }
     options_.log("the evaluation of " + which + " alone decided nothing (" +
@@ -546,18 +568,10 @@ void LeaseScheduler::CollectIsolated(std::vector<Completion>* done) {
   }
 }
 
-void LeaseScheduler::Complete(uint64_t individual, v1::EvaluationResult result,
-                              std::string evaluator, double wall_seconds,
-                              bool null_evaluation,
+void LeaseScheduler::Complete(Completion completion,
                               std::vector<Completion>* done) {
-  const auto it = pending_.find(individual);
-  Completion completion;
-  completion.individual = individual;
-  completion.result = std::move(result);
-  completion.worker = std::move(evaluator);
-  completion.wall_seconds = wall_seconds;
+  const auto it = pending_.find(completion.individual);
   completion.attempts = it->second.attempts;
-  completion.null_evaluation = null_evaluation;
   done->push_back(std::move(completion));
   pending_.erase(it);
   ++stats_.completed;

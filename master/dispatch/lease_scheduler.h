@@ -189,11 +189,9 @@ class LeaseScheduler {
   void Isolate(uint64_t individual);
   // The isolated evaluations that ended: completions, or suspects again.
   void CollectIsolated(std::vector<Completion>* done);
-  // Completes a pending individual (no longer leased or queued) with
-  // `result`, evaluated by `evaluator`.
-  void Complete(uint64_t individual, v1::EvaluationResult result,
-                std::string evaluator, double wall_seconds,
-                bool null_evaluation, std::vector<Completion>* done);
+  // Completes a pending individual (no longer leased or queued):
+  // `completion` holds all but its attempts.
+  void Complete(Completion completion, std::vector<Completion>* done);
   void DropWorker(const std::string& identity, bool died);
   // True when the message was handed to the outbox.
   bool Send(const std::string& identity, v1::Envelope envelope);

@@ -24,7 +24,7 @@ Result<Summary> Best(Store& store, int64_t run) {
   Result<sql::Statement> select = StoreAccess::Database(store).Prepare(
       "SELECT b.id, i.generation, i.operators, i.status, i.fitness, i.cells,"
       " i.springs, i.chambers, i.skin_edges, i.spread_major, i.spread_minor,"
-      " i.distance, i.energy, i.max_overlap"
+      " i.distance, i.energy, i.max_overlap, i.isa"
       " FROM best b JOIN individuals i ON i.run_id = b.run_id AND i.id = b.id"
       " WHERE b.run_id = ?");
   if (!select.ok()) return select.status();
@@ -53,6 +53,7 @@ Result<Summary> Best(Store& store, int64_t run) {
   if (!select->IsNull(11)) best.swum = select->Double(11);
   if (!select->IsNull(12)) best.energy = select->Double(12);
   if (!select->IsNull(13)) best.max_overlap = select->Double(13);
+  if (!select->IsNull(14)) best.isa = select->Text(14);
   Result<sql::Statement> trials = StoreAccess::Database(store).Prepare(
       "SELECT source_distance FROM trials WHERE run_id = ? AND id = ?"
       " ORDER BY trial");

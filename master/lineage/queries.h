@@ -42,6 +42,9 @@ struct Summary {
   // its evaluation is ok and the store recorded it (schema version 8 on);
   // filled by Best only.
   std::optional<double> max_overlap;
+  // The instruction-set path that evaluated it ("avx512", ...), when the
+  // store recorded it (schema version 9 on); filled by Best only.
+  std::string isa;
   // With active guidance, each trial's final distance to its source
   // (radii), in trial order (schema version 7 on); empty otherwise. Filled
   // by Best only.

@@ -365,6 +365,35 @@ CREATE VIEW line_of_descent AS
   SELECT line.run_id, line.step, i.id, i.generation, i.operators, i.fitness
   FROM line JOIN individuals i ON i.run_id = line.run_id AND i.id = line.id;
 )sql",
+    // 8 -> 9: each evaluation records the instruction-set path of the
+    // vector kernels that ran it ('baseline', 'avx2', 'avx512'; every path
+    // gives the same bits, so this says where, not what). NULL when not
+    // known: nothing simulated, a crash, or recorded before. Appended to
+    // the view individuals after version 8's columns.
+    R"sql(
+ALTER TABLE evaluations ADD COLUMN isa TEXT;
+
+DROP VIEW line_of_descent;
+DROP VIEW individuals;
+CREATE VIEW individuals AS
+  SELECT b.run_id, b.id, b.generation, b.operators, b.genome, b.genome_hash,
+         b.elements, b.created_at, e.status, e.reason, e.fitness, e.cells,
+         e.steps, e.wall_seconds, e.worker, e.state_hash, e.evaluated_at,
+         e.springs, e.chambers, e.skin_edges, e.spread_major, e.spread_minor,
+         e.distance, e.energy, e.max_overlap, e.isa
+  FROM births b LEFT JOIN evaluations e
+    ON e.run_id = b.run_id AND e.id = b.id;
+
+CREATE VIEW line_of_descent AS
+  WITH RECURSIVE line (run_id, id, step) AS (
+    SELECT run_id, id, 0 FROM best
+    UNION ALL
+    SELECT line.run_id, p.parent, line.step + 1
+    FROM line JOIN parents p
+      ON p.run_id = line.run_id AND p.child = line.id AND p.position = 0)
+  SELECT line.run_id, line.step, i.id, i.generation, i.operators, i.fitness
+  FROM line JOIN individuals i ON i.run_id = line.run_id AND i.id = line.id;
+)sql",
 };
 
 constexpr int kKnown = static_cast<int>(std::size(kMigrations));

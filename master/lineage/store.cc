@@ -359,9 +359,9 @@ Status Store::RecordEvaluations(int64_t run,
         "INSERT OR IGNORE INTO evaluations (run_id, id, status, reason,"
         " fitness, cells, steps, wall_seconds, worker, state_hash,"
         " evaluated_at, springs, chambers, skin_edges, spread_major,"
-        " spread_minor, distance, energy, max_overlap) SELECT ?1, ?2, ?3, ?4,"
-        " ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16, ?17, ?18,"
-        " ?19"
+        " spread_minor, distance, energy, max_overlap, isa) SELECT ?1, ?2,"
+        " ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14, ?15, ?16,"
+        " ?17, ?18, ?19, ?20"
         " WHERE EXISTS (SELECT 1 FROM births WHERE run_id = ?1 AND id = ?2)");
     if (!insert.ok()) return insert.status();
     const std::string now = UtcNow();
@@ -400,6 +400,11 @@ Status Store::RecordEvaluations(int64_t run,
       insert->Bind(17, optional(r.has_distance(), r.distance()))
           .Bind(18, optional(r.has_energy(), r.energy()))
           .Bind(19, optional(r.has_max_overlap(), r.max_overlap()));
+      if (e.isa.empty()) {
+        insert->BindNull(20);
+      } else {
+        insert->Bind(20, e.isa);
+      }
       Status s = insert->Run();
       if (!s.ok()) return s;
       // A guidance evaluation's trials, kept with the evaluation they came

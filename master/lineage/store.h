@@ -73,6 +73,7 @@ struct Evaluation {
   v1::EvaluationResult result;
   double wall_seconds = 0;
   std::string worker;  // host:pid
+  std::string isa;     // "avx512", ...; empty (NULL) when not known.
 };
 
 struct IndividualRow {

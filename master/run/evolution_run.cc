@@ -190,6 +190,7 @@ Status EvolutionRun::Serve(EvaluationService* evaluators, int timeout_ms) {
     e.result = std::move(c.result);
     e.wall_seconds = c.wall_seconds;
     e.worker = std::move(c.worker);
+    e.isa = std::move(c.isa);
     unsaved_.push_back(std::move(e));
     ++evaluations_;
   }

@@ -206,6 +206,24 @@ TEST_F(LeaseSchedulerTest,
   EXPECT_EQ(s.stats().ignored, 1);
 }
 
+// Each completion carries the instruction-set path its worker named, in
+// lower case as the store records it; none from a worker that names none.
+TEST_F(LeaseSchedulerTest, ACompletionCarriesThePathThatEvaluatedIt) {
+  LeaseScheduler& s = Start();
+  for (uint64_t id : {7u, 3u}) s.Submit(id, GenomeOf(id));
+  From("a", Hello(1, 11));
+  From("a", Credit(2));
+  v1::Envelope seven = ResultFor(7, 1.5);
+  seven.mutable_results()->mutable_results(0)->set_isa(v1::WorkResult::AVX2);
+  From("a", seven);
+  From("a", ResultFor(3, 2.5));
+  ASSERT_EQ(done_.size(), 2u);
+  EXPECT_EQ(done_[0].isa, "avx2");
+  EXPECT_EQ(done_[0].wall_seconds, 0.5);
+  EXPECT_EQ(done_[1].isa, "");
+  EXPECT_EQ(s.pending(), 0u);
+}
+
 TEST_F(LeaseSchedulerTest, ASilentWorkerIsDroppedAndItsLeasesGoBack) {
   LeaseScheduler& s = Start();
   s.Submit(1, GenomeOf(1));

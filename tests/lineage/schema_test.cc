@@ -379,7 +379,7 @@ TEST(SchemaTest, Version3StoreGainsBodyColumnsNullInEveryOldRow) {
     // Version 3's columns first, in order, then the body's.
     std::vector<std::vector<std::string>> names =
         Rows(**store, "SELECT name FROM pragma_table_info('individuals')");
-    ASSERT_EQ(names.size(), 25u);
+    ASSERT_EQ(names.size(), 26u);
     for (size_t c = 0; c < kBodyColumns.size(); ++c) {
       EXPECT_EQ(names[17 + c][0], kBodyColumns[c]);
     }
@@ -388,6 +388,7 @@ TEST(SchemaTest, Version3StoreGainsBodyColumnsNullInEveryOldRow) {
     EXPECT_EQ(names[22][0], "distance");
     EXPECT_EQ(names[23][0], "energy");
     EXPECT_EQ(names[24][0], "max_overlap");  // Version 8's.
+    EXPECT_EQ(names[25][0], "isa");          // Version 9's.
     EXPECT_EQ(Value(**store,
                     "SELECT COUNT(*) FROM individuals"
                     " WHERE distance IS NOT NULL OR energy IS NOT NULL"),
@@ -552,16 +553,18 @@ TEST(SchemaTest, Version7StoreGainsMaxOverlapNullInEveryOldRow) {
 
   Result<std::unique_ptr<Store>> store = Store::Open(file.path());
   ASSERT_TRUE(store.ok()) << store.status().ToString();
-  EXPECT_EQ(UserVersion(file.path()), 8);
+  EXPECT_EQ(UserVersion(file.path()), kSchemaVersion);
   std::vector<std::vector<std::string>> names =
       Rows(**store, "SELECT name FROM pragma_table_info('individuals')");
-  ASSERT_EQ(names.size(), before[0].size() + 1);
-  EXPECT_EQ(names.back()[0], "max_overlap");
+  ASSERT_EQ(names.size(), before[0].size() + 2);  // Versions 8 and 9's.
+  EXPECT_EQ(names[before[0].size()][0], "max_overlap");
   std::vector<std::vector<std::string>> after =
       Rows(**store, "SELECT * FROM individuals ORDER BY id");
   for (std::vector<std::string>& row : after) {
-    EXPECT_EQ(row.back(), "NULL");
-    row.pop_back();
+    for (int added = 0; added < 2; ++added) {
+      EXPECT_EQ(row.back(), "NULL");
+      row.pop_back();
+    }
   }
   EXPECT_EQ(after, before);
 
@@ -570,6 +573,55 @@ TEST(SchemaTest, Version7StoreGainsMaxOverlapNullInEveryOldRow) {
   ASSERT_TRUE((*store)->RecordEvaluations(1, {folded}).ok());
   EXPECT_EQ(Value(**store, "SELECT MAX(max_overlap) FROM individuals"),
             "0.125");
+}
+
+// A store written by schema version 8 gains isa, the last column of
+// individuals, NULL in every old row; the other columns read as before, and
+// results recorded after have it (NULL when not known).
+TEST(SchemaTest, Version8StoreGainsIsaNullInEveryOldRow) {
+  TempStorePath file("v8");
+  {
+    Result<std::unique_ptr<sql::Database>> db =
+        sql::Database::Open(file.path());
+    ASSERT_TRUE(db.ok()) << db.status().ToString();
+    ASSERT_TRUE(Migrate(**db, 8).ok());
+    const Status written = (*db)->Execute(
+        "INSERT INTO runs VALUES (1, 5, x'0a00', 'text', '00000000000000ff',"
+        " 'build', '2026-01-01T00:00:00.000Z', NULL, 'running');"
+        "INSERT INTO births VALUES"
+        " (1, 0, 0, 'random', x'0a0b0c', '0000000000000001', 3, 't0'),"
+        " (1, 1, 0, 'random', x'0a0b0d', '0000000000000002', 3, 't1'),"
+        " (1, 2, 0, 'random', x'0a0b0e', '0000000000000003', 3, 't2');"
+        "INSERT INTO evaluations (run_id, id, status, reason, fitness,"
+        " max_overlap) VALUES (1, 0, 'ok', '', 0.5, 0.25);");
+    ASSERT_TRUE(written.ok()) << written.ToString();
+  }
+  const std::vector<std::vector<std::string>> before =
+      RawRows(file.path(), "SELECT * FROM individuals ORDER BY id");
+  ASSERT_EQ(before.size(), 3u);
+
+  Result<std::unique_ptr<Store>> store = Store::Open(file.path());
+  ASSERT_TRUE(store.ok()) << store.status().ToString();
+  EXPECT_EQ(UserVersion(file.path()), 9);
+  std::vector<std::vector<std::string>> names =
+      Rows(**store, "SELECT name FROM pragma_table_info('individuals')");
+  ASSERT_EQ(names.size(), before[0].size() + 1);
+  EXPECT_EQ(names.back()[0], "isa");
+  std::vector<std::vector<std::string>> after =
+      Rows(**store, "SELECT * FROM individuals ORDER BY id");
+  for (std::vector<std::string>& row : after) {
+    EXPECT_EQ(row.back(), "NULL");
+    row.pop_back();
+  }
+  EXPECT_EQ(after, before);
+
+  Evaluation wide = ::animat::testing::OkEvaluation(1, 1.0);
+  wide.isa = "avx512";
+  const Evaluation unknown = ::animat::testing::OkEvaluation(2, 2.0);
+  ASSERT_TRUE((*store)->RecordEvaluations(1, {wide, unknown}).ok());
+  EXPECT_EQ(Rows(**store, "SELECT id, isa FROM individuals ORDER BY id"),
+            (std::vector<std::vector<std::string>>{
+                {"0", "NULL"}, {"1", "avx512"}, {"2", "NULL"}}));
 }
 
 // An individual of a realistic genome (about 1 kB) costs about its size on

@@ -25,6 +25,7 @@
 #include "common/evaluation/model_config.h"
 #include "common/genome/genome_proto.h"
 #include "common/io/proto_file.h"
+#include "common/kernels/isa.h"
 #include "master/lineage/schema.h"
 #include "master/lineage/sqlite.h"
 #include "tests/master/master_harness.h"
@@ -261,6 +262,13 @@ TEST_F(EvolveCliTest, LineageAnswersAsTheStoreSays) {
                           .at(0);
   EXPECT_EQ(RealCell(fields["distance"]), swum[0]) << out;
   EXPECT_EQ(RealCell(fields["energy"]), swum[1]) << out;
+  // The path that evaluated it: the workers', which share this process's
+  // environment and machine; every evaluation records one.
+  EXPECT_EQ(fields["isa"], IsaName(ActiveIsa())) << out;
+  EXPECT_EQ(QueryRows(db_,
+                      "SELECT DISTINCT COALESCE(isa, 'NULL') FROM individuals"
+                      " WHERE status IS NOT NULL"),
+            (std::vector<SqlRow>{{IsaName(ActiveIsa())}}));
 
   // ancestors: every ancestor once, at its shortest distance, nearest
   // first then by id; computed here from the parents table.

@@ -213,6 +213,13 @@ TEST(LimitsTest, AResultIsCheckedWithItsWallTimeAndIndividual) {
   r.mutable_result()->set_reason("too few");
   r.set_wall_seconds(0.5);
   EXPECT_TRUE(CheckWorkResult(r).ok());
+  for (v1::WorkResult::Isa isa :
+       {v1::WorkResult::BASELINE, v1::WorkResult::AVX2,
+        v1::WorkResult::AVX512}) {
+    v1::WorkResult named = r;
+    named.set_isa(isa);
+    EXPECT_TRUE(CheckWorkResult(named).ok()) << isa;
+  }
   const std::vector<
       std::pair<std::function<void(v1::WorkResult*)>, std::string>>
       cases = {
@@ -238,6 +245,10 @@ TEST(LimitsTest, AResultIsCheckedWithItsWallTimeAndIndividual) {
              w->mutable_result()->set_fitness(1.0);
            },
            "a fitness without status OK"},
+          {[](v1::WorkResult* w) {
+             w->set_isa(static_cast<v1::WorkResult::Isa>(7));
+           },
+           "isa 7 outside [0, 3]"},
       };
   for (const auto& [edit, reason] : cases) {
     v1::WorkResult bad = r;
