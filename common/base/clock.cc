@@ -6,6 +6,9 @@ namespace {
 class SteadyClock final : public Clock {
  public:
   TimePoint Now() const override { return std::chrono::steady_clock::now(); }
+  std::chrono::system_clock::time_point Utc() const override {
+    return std::chrono::system_clock::now();
+  }
 };
 
 }  // namespace

@@ -39,6 +39,8 @@ Status InTransaction(sql::Database& db, Body body) {
 
 }  // namespace
 
+std::string Store::Now() const { return FormatUtc(clock_->Utc()); }
+
 std::string Hex64(uint64_t value) {
   char text[17];
   std::snprintf(text, sizeof(text), "%016llx",
@@ -46,7 +48,8 @@ std::string Hex64(uint64_t value) {
   return text;
 }
 
-Result<std::unique_ptr<Store>> Store::Open(const std::string& path) {
+Result<std::unique_ptr<Store>> Store::Open(const std::string& path,
+                                           const Clock& clock) {
   int lock_fd = -1;
   const bool in_memory = path.empty() || path == ":memory:";
   if (!in_memory) {
@@ -88,7 +91,8 @@ Result<std::unique_ptr<Store>> Store::Open(const std::string& path) {
     if (lock_fd >= 0) close(lock_fd);
     return status;
   }
-  return std::unique_ptr<Store>(new Store(std::move(db).value(), lock_fd));
+  return std::unique_ptr<Store>(
+      new Store(std::move(db).value(), lock_fd, clock));
 }
 
 Result<std::unique_ptr<Store>> Store::OpenForQueries(const std::string& path) {
@@ -112,7 +116,8 @@ Result<std::unique_ptr<Store>> Store::OpenForQueries(const std::string& path) {
                    "` upgrades it, as does a master of this build)"
              : std::string(" (written by a newer animat)")));
   }
-  return std::unique_ptr<Store>(new Store(std::move(db).value(), -1));
+  return std::unique_ptr<Store>(
+      new Store(std::move(db).value(), -1, RealClock()));
 }
 
 Result<int> Store::Upgrade(const std::string& path) {
@@ -149,7 +154,7 @@ Result<int64_t> Store::CreateRun(uint64_t seed, const v1::RunConfig& config,
                                  const std::string& build_id) {
   std::string text;
   google::protobuf::TextFormat::PrintToString(config, &text);
-  const std::string now = UtcNow();
+  const std::string now = Now();
   int64_t run = 0;
   Status status = InTransaction(*db_, [&]() -> Status {
     Result<sql::Statement> insert = db_->Cached(
@@ -225,7 +230,7 @@ Status Store::FinishRun(int64_t run) {
   Result<sql::Statement> update = db_->Cached(
       "UPDATE runs SET state = 'finished', ended_at = ? WHERE run_id = ?");
   if (!update.ok()) return update.status();
-  update->Bind(1, UtcNow()).Bind(2, run);
+  update->Bind(1, Now()).Bind(2, run);
   return update->Run();
 }
 
@@ -250,7 +255,7 @@ Status Store::UpdateRunConfig(int64_t run, int from_generation,
     Status status = update->Run();
     if (!status.ok()) return status;
     return InsertConfigChange(run, from_generation, config, text, build_id,
-                              UtcNow(), reason);
+                              Now(), reason);
   });
 }
 
@@ -320,7 +325,7 @@ Status Store::InsertIndividual(int64_t run, const NewIndividual& n,
 
 Status Store::InsertIndividuals(int64_t run,
                                 const std::vector<NewIndividual>& batch) {
-  const std::string now = UtcNow();
+  const std::string now = Now();
   for (const NewIndividual& n : batch) {
     Status status = InsertIndividual(run, n, now);
     if (!status.ok()) return status;
@@ -364,7 +369,7 @@ Status Store::RecordEvaluations(int64_t run,
         " ?17, ?18, ?19, ?20"
         " WHERE EXISTS (SELECT 1 FROM births WHERE run_id = ?1 AND id = ?2)");
     if (!insert.ok()) return insert.status();
-    const std::string now = UtcNow();
+    const std::string now = Now();
     for (const Evaluation& e : batch) {
       const v1::EvaluationResult& r = e.result;
       std::string status = v1::EvaluationResult::Status_Name(r.status());
@@ -600,7 +605,7 @@ Result<std::unique_ptr<GenerationWrite>> Store::BeginGeneration(
   Status status = db_->Execute("BEGIN IMMEDIATE");
   if (!status.ok()) return status;
   return std::unique_ptr<GenerationWrite>(
-      new GenerationWrite(this, run, generation, std::move(members), UtcNow()));
+      new GenerationWrite(this, run, generation, std::move(members), Now()));
 }
 
 GenerationWrite::~GenerationWrite() {
@@ -691,7 +696,7 @@ Status Store::CompleteGeneration(int64_t run, int generation,
         " best_id = ?, best_fitness = ?, mean_fitness = ?,"
         " median_fitness = ? WHERE run_id = ? AND generation = ?");
     if (!update.ok()) return update.status();
-    update->Bind(1, UtcNow())
+    update->Bind(1, Now())
         .Bind(2, static_cast<int64_t>(stats.evaluated))
         .Bind(3, static_cast<int64_t>(stats.failed));
     if (stats.best_id) {

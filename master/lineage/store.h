@@ -22,6 +22,7 @@
 #include "animat/v1/evolution.pb.h"
 #include "animat/v1/genome.pb.h"
 #include "animat/v1/trace.pb.h"
+#include "common/base/clock.h"
 #include "common/base/status.h"
 #include "common/protocol/genome_wire.h"
 #include "master/lineage/sqlite.h"
@@ -122,8 +123,11 @@ class Store {
  public:
   // Opens or creates the store at `path` ("" or ":memory:" for a private
   // in-memory store, without a lock file), upgrading an older schema.
-  // Fails, saying so, when another process holds the store's lock.
-  static Result<std::unique_ptr<Store>> Open(const std::string& path);
+  // Fails, saying so, when another process holds the store's lock. The
+  // times it records (created_at, evaluated_at, ...) are `clock`'s Utc(),
+  // which must outlive the store.
+  static Result<std::unique_ptr<Store>> Open(const std::string& path,
+                                             const Clock& clock = RealClock());
   // Opens an existing store for queries only: no lock (a master may be
   // writing; WAL lets both proceed), no migration. Fails, saying so, when
   // the file does not exist or its schema is not this build's.
@@ -211,8 +215,10 @@ class Store {
   friend class GenerationWrite;
   sql::Database& database() { return *db_; }
 
-  Store(std::unique_ptr<sql::Database> db, int lock_fd)
-      : db_(std::move(db)), lock_fd_(lock_fd) {}
+  Store(std::unique_ptr<sql::Database> db, int lock_fd, const Clock& clock)
+      : db_(std::move(db)), lock_fd_(lock_fd), clock_(&clock) {}
+  // The clock's time as the store records it (utc_time.h).
+  std::string Now() const;
   Status InsertIndividual(int64_t run, const NewIndividual& n,
                           const std::string& now);
   Status InsertIndividuals(int64_t run,
@@ -228,6 +234,7 @@ class Store {
 
   std::unique_ptr<sql::Database> db_;
   int lock_fd_;  // flock()ed "<path>.lock", -1 for in-memory stores.
+  const Clock* clock_;
 };
 
 // A generation being written (Store::BeginGeneration): its offspring in

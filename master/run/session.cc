@@ -230,7 +230,7 @@ Status RunSession(const SessionOptions& o) {
   const std::atomic<bool>& stop = InstallStopHandlers();
 
   Result<std::unique_ptr<lineage::Store>> store =
-      lineage::Store::Open(o.db_path);
+      lineage::Store::Open(o.db_path, *listen->clock);
   if (!store.ok()) return store.status();
   Result<RunPlan> plan = Plan(store->get(), o, *settings);
   if (!plan.ok()) return plan.status();

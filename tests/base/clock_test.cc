@@ -1,6 +1,6 @@
 // The clocks behind common/base/clock.h: the real one follows
 // steady_clock; the manual one stands still until advanced, also when
-// another thread reads it meanwhile.
+// another thread reads it meanwhile; both tell calendar time too.
 #include "common/base/clock.h"
 
 #include <gtest/gtest.h>
@@ -33,6 +33,21 @@ TEST(ClockTest, ManualClockStandsStillUntilAdvanced) {
   EXPECT_DOUBLE_EQ(clock.Seconds(), 0.25);
   clock.Advance(milliseconds(0));
   EXPECT_EQ(clock.Now() - start, milliseconds(250));
+}
+
+// Calendar time: the system clock's on the real clock; on the manual one,
+// 1970-01-01 00:00:00 UTC moved by the same advances as Now.
+TEST(ClockTest, UtcIsTheSystemClocksOrTheManualClocksFromTheEpoch) {
+  const auto before = std::chrono::system_clock::now();
+  const auto now = RealClock().Utc();
+  const auto after = std::chrono::system_clock::now();
+  EXPECT_LE(before, now);
+  EXPECT_LE(now, after);
+  ManualClock clock;
+  EXPECT_EQ(clock.Utc().time_since_epoch().count(), 0);
+  clock.Advance(milliseconds(1500));
+  EXPECT_EQ(clock.Utc() - std::chrono::system_clock::time_point(),
+            milliseconds(1500));
 }
 
 TEST(ClockTest, ManualClockIsAdvancedByOneThreadWhileAnotherReadsIt) {

@@ -2,6 +2,7 @@
 // and the configuration history it keeps (ConfigHistory).
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -11,6 +12,7 @@
 #include <google/protobuf/text_format.h>
 #include <google/protobuf/util/message_differencer.h>
 
+#include "common/base/clock.h"
 #include "common/protocol/genome_wire.h"
 #include "master/lineage/store.h"
 #include "tests/lineage/lineage_test_util.h"
@@ -242,6 +244,49 @@ TEST(RunsTest, StateIsCheckedBySchema) {
                    .Execute("UPDATE runs SET state = 'paused'")
                    .ok());
   EXPECT_EQ(Value(*store, "SELECT state FROM runs"), "running");
+}
+
+// Every time the store records is its clock's: on a manual clock, exactly
+// the times the test set.
+TEST(RunsTest, EveryTimeRecordedIsTheStoresClocks) {
+  ManualClock clock;
+  clock.Advance(std::chrono::hours(24 * 365));  // 1971-01-01.
+  Result<std::unique_ptr<Store>> opened = Store::Open("", clock);
+  ASSERT_TRUE(opened.ok()) << opened.status().ToString();
+  Store& store = **opened;
+  const int64_t run = ::animat::testing::MakeRun(store);
+  clock.Advance(std::chrono::milliseconds(1500));
+  ASSERT_TRUE(
+      store
+          .AddGeneration(run, 0, {0}, {::animat::testing::MakeIndividual(0, 0)})
+          .ok());
+  clock.Advance(std::chrono::minutes(2));
+  ASSERT_TRUE(
+      store.RecordEvaluations(run, {::animat::testing::OkEvaluation(0, 2.0)})
+          .ok());
+  clock.Advance(std::chrono::hours(3));
+  GenerationStats stats;
+  stats.evaluated = 1;
+  stats.best_id = 0;
+  stats.best = stats.mean = stats.median = 2.0;
+  ASSERT_TRUE(store.CompleteGeneration(run, 0, {0}, stats).ok());
+  clock.Advance(std::chrono::milliseconds(1));
+  ASSERT_TRUE(store.FinishRun(run).ok());
+
+  EXPECT_EQ(Value(store, "SELECT started_at FROM runs"),
+            "1971-01-01T00:00:00.000Z");
+  EXPECT_EQ(Value(store, "SELECT recorded_at FROM run_configs"),
+            "1971-01-01T00:00:00.000Z");
+  EXPECT_EQ(Value(store, "SELECT created_at FROM births"),
+            "1971-01-01T00:00:01.500Z");
+  EXPECT_EQ(Value(store, "SELECT created_at FROM generations"),
+            "1971-01-01T00:00:01.500Z");
+  EXPECT_EQ(Value(store, "SELECT evaluated_at FROM evaluations"),
+            "1971-01-01T00:02:01.500Z");
+  EXPECT_EQ(Value(store, "SELECT completed_at FROM generations"),
+            "1971-01-01T03:02:01.500Z");
+  EXPECT_EQ(Value(store, "SELECT ended_at FROM runs"),
+            "1971-01-01T03:02:01.501Z");
 }
 
 }  // namespace
