@@ -16,12 +16,6 @@
 namespace animat {
 namespace {
 
-int64_t MillisSince(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration_cast<std::chrono::milliseconds>(
-             std::chrono::steady_clock::now() - t)
-      .count();
-}
-
 // Results kept for a next master at most (a few hundred bytes each).
 constexpr size_t kMaxUnacknowledged = 100000;
 
@@ -41,8 +35,8 @@ Worker::Session::Session(Worker& worker, zmq::context_t& context)
     socket_.set(zmq::sockopt::curve_secretkey, options_.curve_secret_key);
   }
   socket_.connect(options_.endpoint);
-  last_heard_ = Steady::now();
-  last_sent_ = Steady::now();
+  last_heard_ = options_.clock->Now();
+  last_sent_ = options_.clock->Now();
 }
 
 Worker::SessionEnd Worker::Session::Run() {
@@ -152,7 +146,7 @@ std::optional<Worker::SessionEnd> Worker::Session::Receive() {
                    decoded.status().message());
       continue;
     }
-    last_heard_ = Steady::now();
+    last_heard_ = options_.clock->Now();
     if (std::optional<SessionEnd> end = Handle(*decoded)) return end;
   }
   return std::nullopt;
@@ -338,7 +332,7 @@ void Worker::Session::Send(const v1::Envelope& envelope) {
                  " (no connection to " + options_.endpoint +
                  " yet; said once a session)");
   }
-  last_sent_ = Steady::now();
+  last_sent_ = options_.clock->Now();
 }
 
 void Worker::Session::ReadHandshakes() {
@@ -417,6 +411,12 @@ Worker::SessionEnd Worker::Session::RunOver(const v1::Goodbye& goodbye) {
   worker_.unsent_.clear();
   worker_.unacknowledged_.clear();
   return SessionEnd::kRunOver;
+}
+
+int64_t Worker::Session::MillisSince(Clock::TimePoint t) const {
+  return std::chrono::duration_cast<std::chrono::milliseconds>(
+             options_.clock->Now() - t)
+      .count();
 }
 
 Worker::SessionEnd Worker::Session::Lost() {

@@ -35,8 +35,6 @@ class Worker::Session {
   SessionEnd Run();
 
  private:
-  using Steady = std::chrono::steady_clock;
-
   // What the last wait found readable.
   struct Events {
     bool master = false;
@@ -72,6 +70,8 @@ class Worker::Session {
   // The master's goodbye: its run is over.
   SessionEnd RunOver(const v1::Goodbye& goodbye);
   SessionEnd Lost();
+  // Milliseconds of options_.clock since `t`.
+  int64_t MillisSince(Clock::TimePoint t) const;
 
   // The worker's: it outlives the session.
   std::unique_ptr<EvaluationPool>& pool() const { return worker_.pool_; }
@@ -80,8 +80,8 @@ class Worker::Session {
   const WorkerOptions& options_;
   zmq::socket_t socket_;
   protocol::HandshakeMonitor handshakes_;  // Of socket_.
-  Steady::time_point last_heard_;
-  Steady::time_point last_sent_;
+  Clock::TimePoint last_heard_;            // On options_.clock.
+  Clock::TimePoint last_sent_;
   int heartbeat_ms_;
   bool welcomed_ = false;
   bool stopping_ = false;

@@ -26,8 +26,7 @@ Worker::~Worker() = default;
 
 int Worker::Run() {
   zmq::context_t context(1);
-  using Steady = std::chrono::steady_clock;
-  Steady::time_point idle_since = Steady::now();
+  Clock::TimePoint idle_since = options_.clock->Now();
   int backoff = options_.reconnect_min_ms;
   while (!stop_.load(std::memory_order_relaxed)) {
     if (IdleTooLong(idle_since)) {
@@ -47,7 +46,7 @@ int Worker::Run() {
     }
     if (*end == SessionEnd::kLostAfterWelcome || *end == SessionEnd::kRunOver) {
       backoff = options_.reconnect_min_ms;
-      idle_since = Steady::now();
+      idle_since = options_.clock->Now();
     }
     options_.log(std::string(*end == SessionEnd::kRunOver
                                  ? "the master's run is over; waiting for a "
@@ -73,13 +72,13 @@ std::optional<Worker::SessionEnd> Worker::RunSession(zmq::context_t& context) {
   }
 }
 
-bool Worker::IdleTooLong(std::chrono::steady_clock::time_point since) const {
+bool Worker::IdleTooLong(Clock::TimePoint since) const {
   return options_.idle_timeout_s > 0 &&
-         std::chrono::steady_clock::now() - since >=
+         options_.clock->Now() - since >=
              std::chrono::seconds(options_.idle_timeout_s);
 }
 
-void Worker::Backoff(int ms, std::chrono::steady_clock::time_point since) {
+void Worker::Backoff(int ms, Clock::TimePoint since) {
   for (int waited = 0; waited < ms && !stop_.load() && !IdleTooLong(since);
        waited += 20) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "animat/v1/protocol.pb.h"
+#include "common/base/clock.h"
 #include "common/base/log.h"
 #include "common/protocol/protocol.h"
 #include "worker/config_cache.h"
@@ -58,6 +59,11 @@ struct WorkerOptions {
   // seconds (checked between connection attempts); 0: never.
   int idle_timeout_s = 0;
   LogSink log = Prefixed("worker", StderrSink);
+  // The time heartbeats, the master's liveness and the idle timeout are
+  // kept by (a ManualClock in tests); it must outlive the worker. Waits
+  // are real time, at most 100 ms at once, so a move of the clock takes
+  // effect within one wait.
+  const Clock* clock = &RealClock();
 };
 
 class Worker {
@@ -96,8 +102,8 @@ class Worker {
   std::optional<SessionEnd> RunSession(zmq::context_t& context);
   // Waits `ms` before the next connection, or less when Stop() is called
   // or the idle timeout comes first.
-  void Backoff(int ms, std::chrono::steady_clock::time_point idle_since);
-  bool IdleTooLong(std::chrono::steady_clock::time_point idle_since) const;
+  void Backoff(int ms, Clock::TimePoint idle_since);
+  bool IdleTooLong(Clock::TimePoint idle_since) const;
   // One connection to a master, from its hello to its end (session.h).
   class Session;
 
