@@ -4,6 +4,9 @@
 #include <atomic>
 #include <cmath>
 #include <memory>
+#include <optional>
+#include <span>
+#include <string>
 #include <system_error>
 #include <thread>
 #include <vector>
@@ -152,6 +155,71 @@ void SilenceMorphogen(const Network& network, int node,
   if (morphogen >= 0) field->Silence(morphogen, grn);
 }
 
+// Where an evaluation stands: what a failure at this point reports.
+struct Progress {
+  int cells = 0;
+  int64_t steps = 0;
+  std::optional<BodySummary> body;  // Once built.
+};
+
+// Every failure of a developed network, in one place: its status and
+// reason with the cells, steps and body reached.
+EvaluationResult Failed(const Progress& p, EvalStatus status,
+                        std::string reason) {
+  EvaluationResult result =
+      Failure(status, std::move(reason), p.cells, p.steps);
+  result.body = p.body;
+  return result;
+}
+
+// Development's end as the evaluation's status.
+EvalStatus StatusOf(DevelopmentStatus status) {
+  switch (status) {
+    case DevelopmentStatus::kOk:
+      return EvalStatus::kOk;
+    case DevelopmentStatus::kLateDivision:
+      return EvalStatus::kLateDivision;
+    case DevelopmentStatus::kTooFewCells:
+      return EvalStatus::kTooFewCells;
+    case DevelopmentStatus::kNumericalFailure:
+      break;
+  }
+  return EvalStatus::kNumericalFailure;
+}
+
+// What the motion phase measured, however many trials it had.
+struct Swum {
+  double fitness = 0.0;
+  double distance = 0.0;
+  double energy = 0.0;
+  double max_overlap = 0.0;
+  uint64_t state_hash = 0;
+  std::vector<double> source_distances;  // With guidance.
+};
+
+// The result of a motion that ran to its end: ok, or a numerical failure
+// when a number it reports is not finite.
+EvaluationResult Finished(const Progress& p, Swum swum) {
+  const char* non_finite = !std::isfinite(swum.fitness) ? "non-finite fitness"
+                           : !std::isfinite(swum.distance)
+                               ? "non-finite distance"
+                           : !std::isfinite(swum.energy) ? "non-finite energy"
+                                                         : nullptr;
+  if (non_finite) return Failed(p, EvalStatus::kNumericalFailure, non_finite);
+  EvaluationResult result;
+  result.status = EvalStatus::kOk;
+  result.fitness = swum.fitness;
+  result.distance = swum.distance;
+  result.energy = swum.energy;
+  result.source_distances = std::move(swum.source_distances);
+  result.max_overlap = swum.max_overlap;
+  result.cells = p.cells;
+  result.steps = p.steps;
+  result.state_hash = swum.state_hash;
+  result.body = p.body;
+  return result;
+}
+
 struct TrialOutcome {
   MotionOutcome motion;
   double distance = 0.0;         // The centre of mass moved (radii).
@@ -160,308 +228,311 @@ struct TrialOutcome {
   uint64_t hash = 0;             // Final state and levels.
 };
 
-// Runs every guidance trial from copies of the equilibrated state (the
-// development's network and signals, `soft_body`, `state`), on up to
-// options.threads threads; the result is summed in trial order once all
-// have finished, so it does not depend on the thread count. `max_overlap`:
-// the deepest unjoined overlap of equilibration.
-template <typename S>
-EvaluationResult RunGuidanceTrials(
-    const ModelConfig& config, const Body& body, const BodySummary& summary,
-    const DevelopmentT<S>& development, const SoftBody& soft_body,
-    const MotionState& state, int cells, int64_t steps, double max_overlap,
-    EvaluationObserver* observer, const EvaluateOptions& options) {
-  const GuidanceParams& g = config.guidance;
-  const int trials = g.trials;
-  const Vec2 start = CentreOfMass(state);
-  const std::vector<int> skin = SkinCells(body);
-  const bool watch_all =
-      observer && options.observed_trial == EvaluateOptions::kAllTrials;
-  const int observed = observer && !watch_all ? options.observed_trial : -1;
-  std::vector<Vec2> sources(trials);
-  for (int k = 0; k < trials; ++k) {
-    sources[k] = GuidanceSource(start, k, trials, g.source_distance);
-  }
-
-  // A knock-out of the chemical (docs/analysis.md): no sensing, so every
-  // cell's CHEMICAL reads the 0 it read during development.
-  const bool sensing = options.knockout.kind != Knockout::Kind::kChemical;
-  std::vector<TrialOutcome> outcomes(trials);
-  auto run_trial = [&](int k) {
-    Chemical chemical;
-    chemical.source = sources[k];
-    chemical.decay_length = g.decay_length;
-    chemical.skin_cells = skin;
-    GrnBatchT<S> grn = development.grn();
-    MorphogenFieldT<S> field = development.field();
-    SoftBody trial_body = soft_body;
-    MotionState trial_state = state;
-    // A Bullet world of its own (a fresh world per trial; contacts start
-    // without the equilibration's cached manifolds).
-    std::unique_ptr<MotionStepper> bullet;
-    if (config.physics.backend == PhysicsBackend::kBullet) {
-      bullet = MakeBulletStepper(&trial_body, body);
-    }
-    MotionStepper& stepper = bullet ? *bullet : trial_body;
-    EvaluationObserver* watcher =
-        watch_all || k == observed ? observer : nullptr;
-    if (watcher) watcher->OnGuidanceTrial(k, sources);
-    TrialOutcome& out = outcomes[k];
-    out.motion =
-        RunMotion(config, grn, field, trial_body, stepper, &trial_state,
-                  sensing ? &chemical : nullptr, watcher);
-    if (!out.motion.problem.empty()) return;
-    const Vec2 end = CentreOfMass(trial_state);
-    out.distance = Length(end - start);
-    out.energy = trial_body.actuation_work();
-    out.source_distance = Length(end - chemical.source);
-    StateHash hash;
-    HashFinalState(trial_state, grn, &hash);
-    out.hash = hash.value();
-  };
-
-  const int threads =
-      watch_all ? 1 : std::min(std::max(options.threads, 1), trials);
+// Runs trial(k) for every k < trials on up to `threads` threads, `first`
+// (when in range) on this thread before its share of the others; alone,
+// it stops at the first trial that fails (the later ones would not be
+// used).
+template <typename RunTrial>
+void RunEveryTrial(int trials, int threads, int first, RunTrial run_trial,
+                   const std::vector<TrialOutcome>& outcomes) {
+  const bool has_first = first >= 0 && first < trials;
   if (threads == 1) {
-    if (observed >= 0 && observed < trials) run_trial(observed);
+    if (has_first) run_trial(first);
     for (int k = 0; k < trials; ++k) {
-      if (k == observed) continue;
+      if (k == first) continue;
       run_trial(k);
-      if (!outcomes[k].motion.problem.empty()) break;  // Later ones unused.
+      if (!outcomes[k].motion.problem.empty()) break;
     }
-  } else {
-    std::atomic<int> next{0};
-    auto work = [&] {
-      for (int k = next.fetch_add(1); k < trials; k = next.fetch_add(1)) {
-        if (k != observed) run_trial(k);
-      }
-    };
-    std::vector<std::thread> helpers;
-    try {
-      for (int t = 1; t < threads; ++t) helpers.emplace_back(work);
-    } catch (const std::system_error&) {
-      // No more threads: the ones started and this one share the trials.
+    return;
+  }
+  std::atomic<int> next{0};
+  auto work = [&] {
+    for (int k = next.fetch_add(1); k < trials; k = next.fetch_add(1)) {
+      if (k != first) run_trial(k);
     }
-    // The observed trial on this thread: the observer is called on the
-    // evaluating thread.
-    if (observed >= 0 && observed < trials) run_trial(observed);
-    work();
-    for (std::thread& helper : helpers) helper.join();
+  };
+  std::vector<std::thread> helpers;
+  try {
+    for (int t = 1; t < threads; ++t) helpers.emplace_back(work);
+  } catch (const std::system_error&) {
+    // No more threads: the ones started and this one share the trials.
   }
-
-  // Trial order, whatever the threads: the first failure decides, and the
-  // steps count up to it.
-  StateHash hash;
-  double score = 0.0, distance = 0.0, energy = 0.0;
-  std::vector<double> source_distances;
-  for (int k = 0; k < trials; ++k) {
-    const TrialOutcome& out = outcomes[k];
-    steps += out.motion.steps;
-    if (!out.motion.problem.empty()) {
-      EvaluationResult failure =
-          Failure(EvalStatus::kNumericalFailure,
-                  "trial " + std::to_string(k) + ": " + out.motion.problem,
-                  cells, steps);
-      failure.body = summary;
-      return failure;
-    }
-    score += g.source_distance - out.source_distance;
-    distance += out.distance;
-    energy += out.energy;
-    max_overlap = std::max(max_overlap, out.motion.max_overlap);
-    source_distances.push_back(out.source_distance);
-    hash.AddU64(out.hash);
-  }
-  score /= trials;
-  distance /= trials;
-  energy /= trials;
-  const char* non_finite = !std::isfinite(score)      ? "non-finite fitness"
-                           : !std::isfinite(distance) ? "non-finite distance"
-                           : !std::isfinite(energy)   ? "non-finite energy"
-                                                      : nullptr;
-  if (non_finite) {
-    EvaluationResult failure =
-        Failure(EvalStatus::kNumericalFailure, non_finite, cells, steps);
-    failure.body = summary;
-    return failure;
-  }
-  EvaluationResult result;
-  result.status = EvalStatus::kOk;
-  result.fitness = score;
-  result.distance = distance;
-  result.energy = energy;
-  result.source_distances = std::move(source_distances);
-  result.max_overlap = max_overlap;
-  result.cells = cells;
-  result.steps = steps;
-  result.state_hash = hash.value();
-  result.body = summary;
-  return result;
+  if (has_first) run_trial(first);
+  work();
+  for (std::thread& helper : helpers) helper.join();
 }
 
-// Development, body, equilibration and motion of a viable network, with
-// network arithmetic in S.
+// The evaluation of a viable network, with network arithmetic in S, as a
+// pipeline: develop, build the body, equilibrate, then swim once or the
+// guidance trials. Each phase returns a failure or nothing; Failed and
+// Finished make every result. Lives on the stack of one evaluation: its
+// members are borrowed by the steppers, so it is never moved.
 template <typename S>
-EvaluationResult RunModel(const Network& network, const ModelConfig& config,
-                          EvaluationObserver* observer,
-                          const EvaluateOptions& options) {
-  // Development (docs/model.md §4, §5).
-  DevelopmentT<S> development(network, config.grn, config.development,
-                              config.signals);
-  typename DevelopmentT<S>::Observer on_step;
-  if (observer) {
-    on_step = [observer](int step, const DevelopmentT<S>& d) {
-      observer->OnDevelopmentStep(step, d.embryo());
-    };
-  }
-  const EvaluationParams& ev = config.evaluation;
-  const DevelopmentOutcome outcome = development.Run(
-      on_step, NumericalCheck{ev.max_coordinate, ev.check_interval});
-  const Embryo& embryo = development.embryo();
-  const int cells = embryo.cells();
-  int64_t steps = outcome.steps_run;
-  switch (outcome.status) {
-    case DevelopmentStatus::kOk:
-      break;
-    case DevelopmentStatus::kLateDivision:
-      return Failure(EvalStatus::kLateDivision, outcome.reason, cells, steps);
-    case DevelopmentStatus::kTooFewCells:
-      return Failure(EvalStatus::kTooFewCells, outcome.reason, cells, steps);
-    case DevelopmentStatus::kNumericalFailure:
-      return Failure(EvalStatus::kNumericalFailure, outcome.reason, cells,
-                     steps);
+class Pipeline {
+ public:
+  Pipeline(const Network& network, const ModelConfig& config,
+           EvaluationObserver* observer, const EvaluateOptions& options)
+      : network_(network),
+        config_(config),
+        ev_(config.evaluation),
+        observer_(observer),
+        options_(options),
+        development_(network, config.grn, config.development, config.signals) {}
+  Pipeline(const Pipeline&) = delete;
+  Pipeline& operator=(const Pipeline&) = delete;
+
+  EvaluationResult Run() {
+    if (auto failed = Develop()) return *failed;
+    if (auto failed = BuildTheBody()) return *failed;
+    PrepareMotion();
+    if (auto failed = Equilibrate()) return *failed;
+    StartMotion();
+    return config_.guidance.enabled ? GuidanceTrials() : Swim();
   }
 
-  // Body (model §6).
-  Result<Body> body = BuildBody(embryo.position, embryo.radius);
-  if (!body.ok()) {
-    return Failure(EvalStatus::kDegenerateBody,
-                   "degenerate body: " + body.status().message(), cells, steps);
-  }
-  const BodySummary summary = SummarizeBody(*body);
-  // A body must enclose area (model §6.5, v2).
-  const std::string shortfall = ChamberShortfall(summary, ev.min_chambers);
-  if (!shortfall.empty()) {
-    EvaluationResult failure =
-        Failure(EvalStatus::kDegenerateBody, shortfall, cells, steps);
-    failure.body = summary;
-    return failure;
+ private:
+  using Failure = std::optional<EvaluationResult>;
+
+  // Development (model §4, §5).
+  Failure Develop() {
+    typename DevelopmentT<S>::Observer on_step;
+    if (observer_) {
+      on_step = [this](int step, const DevelopmentT<S>& d) {
+        observer_->OnDevelopmentStep(step, d.embryo());
+      };
+    }
+    const DevelopmentOutcome outcome = development_.Run(
+        on_step, NumericalCheck{ev_.max_coordinate, ev_.check_interval});
+    progress_.cells = development_.embryo().cells();
+    progress_.steps = outcome.steps_run;
+    if (outcome.status == DevelopmentStatus::kOk) return std::nullopt;
+    return Failed(progress_, StatusOf(outcome.status), outcome.reason);
   }
 
-  // Motion needs only what can influence EXPAND and CONTRACT; the other
-  // nodes (DIVIDE, ROTATE, SIZE and what feeds only them) stop.
-  constexpr OutputChannel kMotionOutputs[] = {OutputChannel::kExpand,
-                                              OutputChannel::kContract};
-  development.RestrictTo(network.NodesReaching(kMotionOutputs));
-
-  // Positional information frozen at its end-of-development values
-  // (model §5.3).
-  GrnBatchT<S>& grn = development.grn();
-  MorphogenFieldT<S>& field = development.field();
-  for (int cell = 0; cell < cells; ++cell) {
-    grn.SetInputs(
-        cell, InputValuesAt(embryo.position[cell],
-                            development.maternal_sources(), config.signals));
+  // The body (model §6), which must enclose area (§6.5, v2).
+  Failure BuildTheBody() {
+    const Embryo& embryo = development_.embryo();
+    Result<Body> body = BuildBody(embryo.position, embryo.radius);
+    if (!body.ok()) {
+      return Failed(progress_, EvalStatus::kDegenerateBody,
+                    "degenerate body: " + body.status().message());
+    }
+    body_ = std::move(body).value();
+    progress_.body = SummarizeBody(*body_);
+    const std::string shortfall =
+        ChamberShortfall(*progress_.body, ev_.min_chambers);
+    if (shortfall.empty()) return std::nullopt;
+    return Failed(progress_, EvalStatus::kDegenerateBody, shortfall);
   }
-  grn.FreezeInputs();
-  const bool signalling = field.morphogens() > 0;
-  if (signalling) field.SetGeometry(embryo.position);
 
-  std::vector<double> expand(cells), contract(cells);
-  ReadActuation(grn, &expand, &contract);
-  SoftBody soft_body(*body, config.physics);
-  soft_body.SetActuation(expand, contract);
-  // The backend: SoftBody integrates itself, or a fresh Bullet world
-  // integrates its forces.
-  std::unique_ptr<MotionStepper> bullet;
-  if (config.physics.backend == PhysicsBackend::kBullet) {
-    bullet = MakeBulletStepper(&soft_body, *body);
+  // The network and body as motion needs them: only the nodes that can
+  // influence EXPAND and CONTRACT (DIVIDE, ROTATE, SIZE and what feeds only
+  // them stop), positional information frozen at its end-of-development
+  // values (model §5.3), the soft body at rest under the first actuation.
+  void PrepareMotion() {
+    constexpr OutputChannel kMotionOutputs[] = {OutputChannel::kExpand,
+                                                OutputChannel::kContract};
+    development_.RestrictTo(network_.NodesReaching(kMotionOutputs));
+    const Embryo& embryo = development_.embryo();
+    GrnBatchT<S>& grn = development_.grn();
+    for (int cell = 0; cell < progress_.cells; ++cell) {
+      grn.SetInputs(cell, InputValuesAt(embryo.position[cell],
+                                        development_.maternal_sources(),
+                                        config_.signals));
+    }
+    grn.FreezeInputs();
+    if (development_.field().morphogens() > 0) {
+      development_.field().SetGeometry(embryo.position);
+    }
+    expand_.resize(progress_.cells);
+    contract_.resize(progress_.cells);
+    ReadActuation(grn, &expand_, &contract_);
+    soft_body_.emplace(*body_, config_.physics);
+    soft_body_->SetActuation(expand_, contract_);
+    // The backend: SoftBody integrates itself, or a fresh Bullet world
+    // integrates its forces.
+    if (config_.physics.backend == PhysicsBackend::kBullet) {
+      bullet_ = MakeBulletStepper(&*soft_body_, *body_);
+    }
+    state_.position = body_->position;
+    state_.velocity.assign(progress_.cells, Vec2{});
+    max_overlap_ = soft_body_->DeepestUnjoinedOverlap(state_);
+    if (observer_) {
+      observer_->OnBody(*body_, expand_, contract_);
+      observer_->OnMotionStep(MotionPhase::kEquilibration, 0, state_, expand_,
+                              contract_);
+    }
   }
-  MotionStepper& stepper = bullet ? *bullet : soft_body;
-  MotionState state;
-  state.position = body->position;
-  state.velocity.assign(cells, Vec2{});
-  double max_overlap = soft_body.DeepestUnjoinedOverlap(state);
-  if (observer) {
-    observer->OnBody(*body, expand, contract);
-    observer->OnMotionStep(MotionPhase::kEquilibration, 0, state, expand,
-                           contract);
+
+  MotionStepper& stepper() {
+    return bullet_ ? *bullet_ : static_cast<MotionStepper&>(*soft_body_);
   }
 
   // Equilibration: network stopped, velocities damped (model §8.2).
-  for (int step = 1; step <= ev.equilibration_steps; ++step) {
-    stepper.Step(&state);
-    for (Vec2& v : state.velocity) v = v * ev.equilibration_damping;
-    ++steps;
-    max_overlap =
-        std::max(max_overlap, soft_body.DeepestUnjoinedOverlap(state));
-    if (CheckDue(step, ev.equilibration_steps, ev.check_interval)) {
-      const std::string problem = CheckState(state, ev.max_coordinate);
-      if (!problem.empty()) {
-        EvaluationResult failure =
-            Failure(EvalStatus::kNumericalFailure,
-                    problem + " at equilibration step " + std::to_string(step),
-                    cells, steps);
-        failure.body = summary;
-        return failure;
+  Failure Equilibrate() {
+    for (int step = 1; step <= ev_.equilibration_steps; ++step) {
+      stepper().Step(&state_);
+      for (Vec2& v : state_.velocity) v = v * ev_.equilibration_damping;
+      ++progress_.steps;
+      max_overlap_ =
+          std::max(max_overlap_, soft_body_->DeepestUnjoinedOverlap(state_));
+      if (CheckDue(step, ev_.equilibration_steps, ev_.check_interval)) {
+        const std::string problem = CheckState(state_, ev_.max_coordinate);
+        if (!problem.empty()) {
+          return Failed(
+              progress_, EvalStatus::kNumericalFailure,
+              problem + " at equilibration step " + std::to_string(step));
+        }
+      }
+      if (observer_) {
+        observer_->OnMotionStep(MotionPhase::kEquilibration, step, state_,
+                                expand_, contract_);
       }
     }
-    if (observer) {
-      observer->OnMotionStep(MotionPhase::kEquilibration, step, state, expand,
-                             contract);
-    }
+    return std::nullopt;
   }
 
-  // A knock-out of a morphogen (docs/analysis.md) starts with motion, once:
+  // Motion starts at rest with the work uncounted (model §10.1); a
+  // knock-out of a morphogen (docs/analysis.md) starts here, once:
   // development and equilibration are the intact animat's.
-  if (options.knockout.kind == Knockout::Kind::kMorphogen) {
-    SilenceMorphogen(network, options.knockout.node, &field, &grn);
+  void StartMotion() {
+    if (options_.knockout.kind == Knockout::Kind::kMorphogen) {
+      SilenceMorphogen(network_, options_.knockout.node, &development_.field(),
+                       &development_.grn());
+    }
+    for (Vec2& v : state_.velocity) v = Vec2{};
+    soft_body_->ResetActuationWork();
   }
 
-  // Motion: network running (model §7.7, §8.1); energy counts from here
-  // (model §10.1).
-  for (Vec2& v : state.velocity) v = Vec2{};
-  soft_body.ResetActuationWork();
-  if (config.guidance.enabled) {
-    return RunGuidanceTrials(config, *body, summary, development, soft_body,
-                             state, cells, steps, max_overlap, observer,
-                             options);
-  }
-  const Vec2 start = CentreOfMass(state);
-  const MotionOutcome motion = RunMotion(config, grn, field, soft_body, stepper,
-                                         &state, nullptr, observer);
-  steps += motion.steps;
-  if (!motion.problem.empty()) {
-    EvaluationResult failure =
-        Failure(EvalStatus::kNumericalFailure, motion.problem, cells, steps);
-    failure.body = summary;
-    return failure;
+  // Motion: network running (model §7.7, §8.1).
+  EvaluationResult Swim() {
+    const Vec2 start = CentreOfMass(state_);
+    GrnBatchT<S>& grn = development_.grn();
+    const MotionOutcome motion =
+        RunMotion(config_, grn, development_.field(), *soft_body_, stepper(),
+                  &state_, nullptr, observer_);
+    progress_.steps += motion.steps;
+    if (!motion.problem.empty()) {
+      return Failed(progress_, EvalStatus::kNumericalFailure, motion.problem);
+    }
+    Swum swum;
+    swum.distance = Length(CentreOfMass(state_) - start);
+    swum.energy = soft_body_->actuation_work();
+    swum.fitness = swum.distance;
+    if (std::isfinite(swum.distance) && std::isfinite(swum.energy)) {
+      swum.fitness = Objective(ev_, swum.distance, swum.energy);
+    }
+    swum.max_overlap = std::max(max_overlap_, motion.max_overlap);
+    StateHash hash;
+    HashFinalState(state_, grn, &hash);
+    swum.state_hash = hash.value();
+    return Finished(progress_, std::move(swum));
   }
 
-  const double fitness = Length(CentreOfMass(state) - start);
-  const double energy = soft_body.actuation_work();
-  if (!std::isfinite(fitness) || !std::isfinite(energy)) {
-    EvaluationResult failure = Failure(
-        EvalStatus::kNumericalFailure,
-        std::isfinite(fitness) ? "non-finite energy" : "non-finite fitness",
-        cells, steps);
-    failure.body = summary;
-    return failure;
+  // One guidance trial from a copy of the equilibrated network, signals,
+  // body and state, towards source k.
+  void RunTrial(int k, const std::vector<Vec2>& sources,
+                std::span<const int> skin, Vec2 start,
+                EvaluationObserver* watcher, TrialOutcome* out) const {
+    Chemical chemical;
+    chemical.source = sources[k];
+    chemical.decay_length = config_.guidance.decay_length;
+    chemical.skin_cells = skin;
+    GrnBatchT<S> grn = development_.grn();
+    MorphogenFieldT<S> field = development_.field();
+    SoftBody trial_body = *soft_body_;
+    MotionState trial_state = state_;
+    // A Bullet world of its own (a fresh world per trial; contacts start
+    // without the equilibration's cached manifolds).
+    std::unique_ptr<MotionStepper> bullet;
+    if (config_.physics.backend == PhysicsBackend::kBullet) {
+      bullet = MakeBulletStepper(&trial_body, *body_);
+    }
+    MotionStepper& stepper = bullet ? *bullet : trial_body;
+    if (watcher) watcher->OnGuidanceTrial(k, sources);
+    // A knock-out of the chemical (docs/analysis.md): no sensing, so every
+    // cell's CHEMICAL reads the 0 it read during development.
+    const bool sensing = options_.knockout.kind != Knockout::Kind::kChemical;
+    out->motion =
+        RunMotion(config_, grn, field, trial_body, stepper, &trial_state,
+                  sensing ? &chemical : nullptr, watcher);
+    if (!out->motion.problem.empty()) return;
+    const Vec2 end = CentreOfMass(trial_state);
+    out->distance = Length(end - start);
+    out->energy = trial_body.actuation_work();
+    out->source_distance = Length(end - chemical.source);
+    StateHash hash;
+    HashFinalState(trial_state, grn, &hash);
+    out->hash = hash.value();
   }
-  EvaluationResult result;
-  result.status = EvalStatus::kOk;
-  result.fitness = Objective(ev, fitness, energy);
-  result.distance = fitness;
-  result.energy = energy;
-  result.max_overlap = std::max(max_overlap, motion.max_overlap);
-  result.cells = cells;
-  result.steps = steps;
-  StateHash hash;
-  HashFinalState(state, grn, &hash);
-  result.state_hash = hash.value();
-  result.body = summary;
-  return result;
-}
+
+  // Every guidance trial (model §10.2) on up to options.threads threads,
+  // combined in trial order once all have finished, so the result does not
+  // depend on the thread count: the first failure decides, and the steps
+  // count up to it.
+  EvaluationResult GuidanceTrials() {
+    const GuidanceParams& g = config_.guidance;
+    const int trials = g.trials;
+    const Vec2 start = CentreOfMass(state_);
+    const std::vector<int> skin = SkinCells(*body_);
+    const bool watch_all =
+        observer_ && options_.observed_trial == EvaluateOptions::kAllTrials;
+    const int observed = observer_ && !watch_all ? options_.observed_trial : -1;
+    std::vector<Vec2> sources(trials);
+    for (int k = 0; k < trials; ++k) {
+      sources[k] = GuidanceSource(start, k, trials, g.source_distance);
+    }
+    std::vector<TrialOutcome> outcomes(trials);
+    const int threads =
+        watch_all ? 1 : std::min(std::max(options_.threads, 1), trials);
+    // The observed trial runs first, on this thread: the observer is
+    // called on the evaluating thread.
+    RunEveryTrial(
+        trials, threads, observed,
+        [&](int k) {
+          RunTrial(k, sources, skin, start,
+                   watch_all || k == observed ? observer_ : nullptr,
+                   &outcomes[k]);
+        },
+        outcomes);
+    StateHash hash;
+    Swum swum;
+    swum.max_overlap = max_overlap_;
+    for (int k = 0; k < trials; ++k) {
+      const TrialOutcome& out = outcomes[k];
+      progress_.steps += out.motion.steps;
+      if (!out.motion.problem.empty()) {
+        return Failed(progress_, EvalStatus::kNumericalFailure,
+                      "trial " + std::to_string(k) + ": " + out.motion.problem);
+      }
+      swum.fitness += g.source_distance - out.source_distance;
+      swum.distance += out.distance;
+      swum.energy += out.energy;
+      swum.max_overlap = std::max(swum.max_overlap, out.motion.max_overlap);
+      swum.source_distances.push_back(out.source_distance);
+      hash.AddU64(out.hash);
+    }
+    swum.fitness /= trials;
+    swum.distance /= trials;
+    swum.energy /= trials;
+    swum.state_hash = hash.value();
+    return Finished(progress_, std::move(swum));
+  }
+
+  const Network& network_;
+  const ModelConfig& config_;
+  const EvaluationParams& ev_;
+  EvaluationObserver* observer_;
+  const EvaluateOptions& options_;
+  DevelopmentT<S> development_;
+  Progress progress_;
+  std::optional<Body> body_;
+  std::optional<SoftBody> soft_body_;
+  std::unique_ptr<MotionStepper> bullet_;
+  MotionState state_;
+  std::vector<double> expand_, contract_;
+  double max_overlap_ = 0.0;  // Over equilibration so far.
+};
 
 }  // namespace
 
@@ -527,9 +598,9 @@ EvaluationResult Evaluate(const Genome& genome, const ModelConfig& config,
     return Failure(EvalStatus::kNonViable, viability.reason, 0, 0);
   }
   if (config.grn.precision == Precision::kFloat) {
-    return RunModel<float>(network, config, observer, options);
+    return Pipeline<float>(network, config, observer, options).Run();
   }
-  return RunModel<double>(network, config, observer, options);
+  return Pipeline<double>(network, config, observer, options).Run();
 }
 
 }  // namespace animat
