@@ -3,9 +3,37 @@
 #include <string>
 
 #include "common/base/validate.h"
+#include "common/io/param_table.h"
 
 namespace animat {
 namespace {
+
+// The numeric parameters, in the proto's order (docs/model.md §7).
+constexpr ParamRow<PhysicsParams> kRows[] = {
+    {"mass", &PhysicsParams::mass, ParamRange::Positive(), "of every cell"},
+    {"stiffness", &PhysicsParams::stiffness, ParamRange::NonNegative(),
+     "spring k, force per radius"},
+    {"damping", &PhysicsParams::damping, ParamRange::NonNegative(),
+     "spring gamma, force per unit speed"},
+    {"pressure", &PhysicsParams::pressure, ParamRange::NonNegative(),
+     "chamber c_p"},
+    {"drag_normal", &PhysicsParams::drag_normal, ParamRange::NonNegative(),
+     "d_N"},
+    {"drag_tangential", &PhysicsParams::drag_tangential,
+     ParamRange::NonNegative(), "d_T"},
+    {"dt", &PhysicsParams::dt, ParamRange::Positive(),
+     "time per simulation step"},
+    {"actuation_max", &PhysicsParams::actuation_max,
+     ParamRange::HalfOpen(0.0, 0.5), "A_max"},
+    {"min_rest_fraction", &PhysicsParams::min_rest_fraction,
+     ParamRange::Positive(), "a rest length never below this times L0"},
+    {"substeps", &PhysicsParams::substeps, ParamRange::Closed(1, 1024),
+     "physics sub-steps per simulation step"},
+    {"contact_stiffness", &PhysicsParams::contact_stiffness,
+     ParamRange::NonNegative(), "k_c, force per radius of overlap"},
+    {"contact_damping", &PhysicsParams::contact_damping,
+     ParamRange::NonNegative(), "gamma_c, force per unit approach speed"},
+};
 
 // "rk4" -> "RK4": the enum value's name in config files.
 std::string UpperCase(const char* name) {
@@ -100,92 +128,91 @@ v1::PhysicsConfig::ContactRule ContactRuleToProto(ContactRule rule) {
 
 }  // namespace
 
-Status PhysicsParamsFromProto(const v1::PhysicsConfig& m,
-                              PhysicsParams* params) {
-  PhysicsParams p = *params;
-  if (m.has_mass()) p.mass = m.mass();
-  if (m.has_stiffness()) p.stiffness = m.stiffness();
-  if (m.has_damping()) p.damping = m.damping();
-  if (m.has_pressure()) p.pressure = m.pressure();
-  if (m.has_drag_normal()) p.drag_normal = m.drag_normal();
-  if (m.has_drag_tangential()) p.drag_tangential = m.drag_tangential();
-  if (m.has_dt()) p.dt = m.dt();
-  if (m.has_actuation_max()) p.actuation_max = m.actuation_max();
-  if (m.has_min_rest_fraction()) p.min_rest_fraction = m.min_rest_fraction();
+ParamTable<PhysicsParams> PhysicsParamTable() { return kRows; }
+
+namespace {
+
+Status IntegratorFromProto(const v1::PhysicsConfig& m, PhysicsParams* p) {
   if (m.has_integrator()) {
     switch (m.integrator()) {
       case v1::PhysicsConfig::INTEGRATOR_UNSPECIFIED:
         break;
       case v1::PhysicsConfig::SEMI_IMPLICIT_EULER:
-        p.integrator = Integrator::kSemiImplicitEuler;
+        p->integrator = Integrator::kSemiImplicitEuler;
         break;
       case v1::PhysicsConfig::VELOCITY_VERLET:
-        p.integrator = Integrator::kVelocityVerlet;
+        p->integrator = Integrator::kVelocityVerlet;
         break;
       case v1::PhysicsConfig::RK4:
-        p.integrator = Integrator::kRk4;
+        p->integrator = Integrator::kRk4;
         break;
       case v1::PhysicsConfig::SSPRK3:
-        p.integrator = Integrator::kSsprk3;
+        p->integrator = Integrator::kSsprk3;
         break;
       case v1::PhysicsConfig::RALSTON3:
-        p.integrator = Integrator::kRalston3;
+        p->integrator = Integrator::kRalston3;
         break;
       default:
         return Status::InvalidArgument("physics.integrator: unknown value " +
                                        std::to_string(m.integrator()));
     }
   }
-  if (m.has_substeps()) p.substeps = m.substeps();
+  return Status::Ok();
+}
+
+Status DragUpdateFromProto(const v1::PhysicsConfig& m, PhysicsParams* p) {
   if (m.has_drag_update()) {
     switch (m.drag_update()) {
       case v1::PhysicsConfig::DRAG_UPDATE_UNSPECIFIED:
         break;
       case v1::PhysicsConfig::EXPLICIT:
-        p.drag_update = DragUpdate::kExplicit;
+        p->drag_update = DragUpdate::kExplicit;
         break;
       case v1::PhysicsConfig::STABLE:
-        p.drag_update = DragUpdate::kStable;
+        p->drag_update = DragUpdate::kStable;
         break;
       default:
         return Status::InvalidArgument("physics.drag_update: unknown value " +
                                        std::to_string(m.drag_update()));
     }
   }
+  return Status::Ok();
+}
+
+Status BackendFromProto(const v1::PhysicsConfig& m, PhysicsParams* p) {
   if (m.has_backend()) {
     switch (m.backend()) {
       case v1::PhysicsConfig::BACKEND_UNSPECIFIED:
         break;
       case v1::PhysicsConfig::NATIVE:
-        p.backend = PhysicsBackend::kNative;
+        p->backend = PhysicsBackend::kNative;
         break;
       case v1::PhysicsConfig::BULLET:
-        p.backend = PhysicsBackend::kBullet;
+        p->backend = PhysicsBackend::kBullet;
         break;
       default:
         return Status::InvalidArgument("physics.backend: unknown value " +
                                        std::to_string(m.backend()));
     }
   }
-  if (Status rule = ContactRuleFromProto(m, &p.contact_rule); !rule.ok()) {
-    return rule;
-  }
-  if (m.has_contact_stiffness()) p.contact_stiffness = m.contact_stiffness();
-  if (m.has_contact_damping()) p.contact_damping = m.contact_damping();
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status PhysicsParamsFromProto(const v1::PhysicsConfig& m,
+                              PhysicsParams* params) {
+  PhysicsParams p = *params;
+  ReadParams<PhysicsParams>(m, kRows, &p);
   Status status = FirstError({
-      RequirePositive("physics.mass", p.mass),
-      RequireNonNegative("physics.stiffness", p.stiffness),
-      RequireNonNegative("physics.damping", p.damping),
-      RequireNonNegative("physics.pressure", p.pressure),
-      RequireNonNegative("physics.drag_normal", p.drag_normal),
-      RequireNonNegative("physics.drag_tangential", p.drag_tangential),
-      RequirePositive("physics.dt", p.dt),
-      RequireInRange("physics.actuation_max", p.actuation_max, 0.0, 0.5,
-                     /*include_hi=*/false),
-      RequirePositive("physics.min_rest_fraction", p.min_rest_fraction),
-      RequireIntInRange("physics.substeps", p.substeps, 1, 1024),
-      RequireNonNegative("physics.contact_stiffness", p.contact_stiffness),
-      RequireNonNegative("physics.contact_damping", p.contact_damping),
+      IntegratorFromProto(m, &p),
+      DragUpdateFromProto(m, &p),
+      BackendFromProto(m, &p),
+      ContactRuleFromProto(m, &p.contact_rule),
+  });
+  if (!status.ok()) return status;
+  status = FirstError({
+      CheckParams<PhysicsParams>("physics", p, kRows),
       // Bullet integrates by semi-implicit Euler itself, with our forces
       // (drag among them) applied as given.
       p.backend == PhysicsBackend::kBullet &&
@@ -210,15 +237,7 @@ Status PhysicsParamsFromProto(const v1::PhysicsConfig& m,
 
 v1::PhysicsConfig PhysicsParamsToProto(const PhysicsParams& p) {
   v1::PhysicsConfig m;
-  m.set_mass(p.mass);
-  m.set_stiffness(p.stiffness);
-  m.set_damping(p.damping);
-  m.set_pressure(p.pressure);
-  m.set_drag_normal(p.drag_normal);
-  m.set_drag_tangential(p.drag_tangential);
-  m.set_dt(p.dt);
-  m.set_actuation_max(p.actuation_max);
-  m.set_min_rest_fraction(p.min_rest_fraction);
+  WriteParams<PhysicsParams>(p, kRows, &m);
   switch (p.integrator) {
     case Integrator::kSemiImplicitEuler:
       m.set_integrator(v1::PhysicsConfig::SEMI_IMPLICIT_EULER);
@@ -236,7 +255,6 @@ v1::PhysicsConfig PhysicsParamsToProto(const PhysicsParams& p) {
       m.set_integrator(v1::PhysicsConfig::RALSTON3);
       break;
   }
-  m.set_substeps(p.substeps);
   m.set_drag_update(p.drag_update == DragUpdate::kStable
                         ? v1::PhysicsConfig::STABLE
                         : v1::PhysicsConfig::EXPLICIT);
@@ -244,8 +262,6 @@ v1::PhysicsConfig PhysicsParamsToProto(const PhysicsParams& p) {
                     ? v1::PhysicsConfig::BULLET
                     : v1::PhysicsConfig::NATIVE);
   m.set_contact_rule(ContactRuleToProto(p.contact_rule));
-  m.set_contact_stiffness(p.contact_stiffness);
-  m.set_contact_damping(p.contact_damping);
   return m;
 }
 

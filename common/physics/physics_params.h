@@ -5,6 +5,7 @@
 
 #include "animat/v1/config.pb.h"
 #include "common/base/status.h"
+#include "common/io/param_table.h"
 
 namespace animat {
 
@@ -66,6 +67,9 @@ Status PhysicsParamsFromProto(const v1::PhysicsConfig& message,
                               PhysicsParams* params);
 // Every field set but the deprecated physics.contacts.
 v1::PhysicsConfig PhysicsParamsToProto(const PhysicsParams& params);
+// The numeric parameters' table (common/io/param_table.h), which both
+// conversions and the checks read.
+ParamTable<PhysicsParams> PhysicsParamTable();
 
 }  // namespace animat
 
