@@ -48,13 +48,12 @@ bool Connected(int n, const std::vector<std::vector<int>>& neighbours) {
   return count == n;
 }
 
-}  // namespace
-
-Result<PlaneFaces> FacesOfPlaneGraph(std::span<const Vec2> points,
-                                     std::span<const IndexEdge> edges) {
+// Each vertex's neighbours in order of angle, after checking that every
+// edge joins two distinct vertices at distinct points and that the graph
+// is connected.
+Result<std::vector<std::vector<int>>> SortedNeighbours(
+    std::span<const Vec2> points, std::span<const IndexEdge> edges) {
   const int n = static_cast<int>(points.size());
-  if (n < 2) return Status::InvalidArgument("fewer than two vertices");
-
   std::vector<std::vector<int>> neighbours(n);
   for (const IndexEdge& e : edges) {
     if (e.a < 0 || e.b < 0 || e.a >= n || e.b >= n || e.a == e.b) {
@@ -75,7 +74,13 @@ Result<PlaneFaces> FacesOfPlaneGraph(std::span<const Vec2> points,
     std::sort(neighbours[v].begin(), neighbours[v].end(),
               AngleLess{points[v], points});
   }
+  return neighbours;
+}
 
+// Every face's walk, each half-edge walked once, the face on its left.
+std::vector<std::vector<int>> TraceFaces(
+    const std::vector<std::vector<int>>& neighbours) {
+  const int n = static_cast<int>(neighbours.size());
   // Half-edge v -> neighbours[v][slot] has id offset[v] + slot.
   std::vector<int> offset(n + 1, 0);
   for (int v = 0; v < n; ++v) {
@@ -105,6 +110,19 @@ Result<PlaneFaces> FacesOfPlaneGraph(std::span<const Vec2> points,
       faces.push_back(std::move(walk));
     }
   }
+  return faces;
+}
+
+}  // namespace
+
+Result<PlaneFaces> FacesOfPlaneGraph(std::span<const Vec2> points,
+                                     std::span<const IndexEdge> edges) {
+  const int n = static_cast<int>(points.size());
+  if (n < 2) return Status::InvalidArgument("fewer than two vertices");
+  Result<std::vector<std::vector<int>>> neighbours =
+      SortedNeighbours(points, edges);
+  if (!neighbours.ok()) return neighbours.status();
+  std::vector<std::vector<int>> faces = TraceFaces(*neighbours);
 
   const int edge_count = static_cast<int>(edges.size());
   if (static_cast<int>(faces.size()) != edge_count - n + 2) {

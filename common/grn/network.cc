@@ -43,12 +43,15 @@ bool Binds(const Element& factor, const Element& region,
   return Distance(factor, region) < params.cutoff;
 }
 
-Network Network::Build(const Genome& genome, const GrnParams& params) {
-  Network net;
-  const std::vector<Element>& el = genome.elements;
-  const int n = static_cast<int>(el.size());
+namespace {
 
-  // Parse into nodes (model §2.1).
+// The genome's elements parsed into nodes (model §2.1): a run of P
+// followed by a run of G is a unit; an input or output element is a node
+// of its own; a P run with no G after it, and a G run with no P before it,
+// make nothing.
+std::vector<Node> ParseNodes(const std::vector<Element>& el) {
+  std::vector<Node> nodes;
+  const int n = static_cast<int>(el.size());
   int i = 0;
   while (i < n) {
     const ElementType type = el[i].type;
@@ -69,7 +72,7 @@ Network Network::Build(const Genome& genome, const GrnParams& params) {
             node.makes_morphogen = true;
           }
         }
-        net.nodes_.push_back(std::move(node));
+        nodes.push_back(std::move(node));
       }
       i = k;  // A P run with no G after it is ignored.
     } else if (el[i].IsG()) {
@@ -85,10 +88,71 @@ Network Network::Build(const Genome& genome, const GrnParams& params) {
         node.kind = NodeKind::kOutput;
         node.regions.push_back(i);
       }
-      net.nodes_.push_back(std::move(node));
+      nodes.push_back(std::move(node));
       ++i;
     }
   }
+  return nodes;
+}
+
+// One source node's weights onto every target (indices into `targets`),
+// by the kind of its binding factors, and the nodes it binds.
+struct SourceRows {
+  Row input, level, morphogen;
+  std::vector<int> successors;
+};
+
+SourceRows RowsOf(int s, const std::vector<Node>& nodes,
+                  const std::vector<int>& targets,
+                  const std::vector<Element>& el, const GrnParams& params) {
+  const Node& source = nodes[s];
+  SourceRows rows{{SourceKind::kInput, s, {}, {}},
+                  {SourceKind::kLevel, s, {}, {}},
+                  {SourceKind::kMorphogen, s, {}, {}},
+                  {}};
+  for (size_t t = 0; t < targets.size(); ++t) {
+    const int u = targets[t];
+    bool bound = false;
+    double w_input = 0.0, w_level = 0.0, w_morphogen = 0.0;
+    for (int r : nodes[u].regions) {
+      for (int f : source.factors) {
+        if (!Compatible(el[f], el[r]) || !Binds(el[f], el[r], params)) {
+          continue;
+        }
+        bound = true;
+        const double w = Affinity(el[f], el[r], params);
+        switch (el[f].type) {
+          case ElementType::kSIn:
+            w_input += w;
+            break;
+          case ElementType::kGInternal:
+            w_level += w;
+            break;
+          default:
+            w_morphogen += w;
+            break;
+        }
+      }
+    }
+    if (bound) rows.successors.push_back(u);
+    const int target = static_cast<int>(t);
+    for (auto [row, w] :
+         {std::pair{&rows.input, w_input}, std::pair{&rows.level, w_level},
+          std::pair{&rows.morphogen, w_morphogen}}) {
+      if (w == 0.0) continue;
+      row->targets.push_back(target);
+      row->values.push_back(w);
+    }
+  }
+  return rows;
+}
+
+}  // namespace
+
+Network Network::Build(const Genome& genome, const GrnParams& params) {
+  Network net;
+  const std::vector<Element>& el = genome.elements;
+  net.nodes_ = ParseNodes(el);
 
   const int nodes = net.node_count();
   for (int v = 0; v < nodes; ++v) {
@@ -111,57 +175,18 @@ Network Network::Build(const Genome& genome, const GrnParams& params) {
   for (int s = 0; s < nodes; ++s) {
     const Node& source = net.nodes_[s];
     if (source.factors.empty()) continue;
-    Row input{SourceKind::kInput, s, {}, {}};
-    Row level{SourceKind::kLevel, s, {}, {}};
-    Row morphogen{SourceKind::kMorphogen, s, {}, {}};
-    for (size_t t = 0; t < net.targets_.size(); ++t) {
-      const int u = net.targets_[t];
-      bool bound = false;
-      double w_input = 0.0, w_level = 0.0, w_morphogen = 0.0;
-      for (int r : net.nodes_[u].regions) {
-        for (int f : source.factors) {
-          if (!Compatible(el[f], el[r]) || !Binds(el[f], el[r], params)) {
-            continue;
-          }
-          bound = true;
-          const double w = Affinity(el[f], el[r], params);
-          switch (el[f].type) {
-            case ElementType::kSIn:
-              w_input += w;
-              break;
-            case ElementType::kGInternal:
-              w_level += w;
-              break;
-            default:
-              w_morphogen += w;
-              break;
-          }
-        }
-      }
-      if (bound) net.successors_[s].push_back(u);
-      const int target = static_cast<int>(t);
-      if (w_input != 0.0) {
-        input.targets.push_back(target);
-        input.values.push_back(w_input);
-      }
-      if (w_level != 0.0) {
-        level.targets.push_back(target);
-        level.values.push_back(w_level);
-      }
-      if (w_morphogen != 0.0) {
-        morphogen.targets.push_back(target);
-        morphogen.values.push_back(w_morphogen);
-      }
-    }
-    if (!input.targets.empty()) {
+    SourceRows rows = RowsOf(s, net.nodes_, net.targets_, el, params);
+    net.successors_[s] = std::move(rows.successors);
+    if (!rows.input.targets.empty()) {
       (source.channel == static_cast<int>(InputChannel::kChemical)
            ? chemical_rows
            : input_rows)
-          .push_back(std::move(input));
+          .push_back(std::move(rows.input));
     }
-    if (!level.targets.empty()) level_rows.push_back(std::move(level));
-    if (!morphogen.targets.empty()) {
-      morphogen_rows.push_back(std::move(morphogen));
+    if (!rows.level.targets.empty())
+      level_rows.push_back(std::move(rows.level));
+    if (!rows.morphogen.targets.empty()) {
+      morphogen_rows.push_back(std::move(rows.morphogen));
     }
   }
 

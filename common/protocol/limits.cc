@@ -168,7 +168,10 @@ Status CheckEnvelope(const v1::Envelope& e) {
   return Status::Ok();
 }
 
-Status ValidateResult(const v1::EvaluationResult& r) {
+namespace {
+
+// The status, and the fitness and guidance distances it allows.
+Status CheckStatusAndFitness(const v1::EvaluationResult& r) {
   if (!v1::EvaluationResult::Status_IsValid(r.status()) ||
       r.status() == v1::EvaluationResult::STATUS_UNSPECIFIED) {
     return Status::InvalidArgument("unknown status " +
@@ -198,6 +201,12 @@ Status ValidateResult(const v1::EvaluationResult& r) {
       return Status::InvalidArgument("source distance " + ShortestDouble(d));
     }
   }
+  return Status::Ok();
+}
+
+// The distance swum, the energy and the deepest unjoined overlap.
+Status CheckMeasures(const v1::EvaluationResult& r) {
+  const bool ok = r.status() == v1::EvaluationResult::OK;
   // The distance swum and the energy: optional, only with status OK,
   // finite and never negative.
   const std::tuple<const char*, bool, double> measures[] = {
@@ -223,7 +232,44 @@ Status ValidateResult(const v1::EvaluationResult& r) {
     return Status::InvalidArgument(
         "max_overlap " + ShortestDouble(r.max_overlap()) + " outside [0, 1]");
   }
-  Status status = CheckString("reason", r.reason(), kMaxReasonBytes);
+  return Status::Ok();
+}
+
+// The body's counts and spreads.
+Status CheckBody(const v1::BodySummary& b) {
+  const std::pair<const char*, int32_t> counts[] = {
+      {"cells", b.cells()},
+      {"springs", b.springs()},
+      {"chambers", b.chambers()},
+      {"skin_edges", b.skin_edges()}};
+  for (const auto& [name, count] : counts) {
+    if (count < 0) {
+      return Status::InvalidArgument(std::string("body ") + name + " " +
+                                     std::to_string(count));
+    }
+  }
+  const std::pair<const char*, double> spreads[] = {
+      {"spread_major", b.spread_major()}, {"spread_minor", b.spread_minor()}};
+  for (const auto& [name, spread] : spreads) {
+    if (!(std::isfinite(spread) && spread >= 0.0)) {
+      return Status::InvalidArgument(std::string("body ") + name + " " +
+                                     ShortestDouble(spread));
+    }
+  }
+  if (b.spread_minor() > b.spread_major()) {
+    return Status::InvalidArgument(
+        "body spread_minor " + ShortestDouble(b.spread_minor()) +
+        " above spread_major " + ShortestDouble(b.spread_major()));
+  }
+  return Status::Ok();
+}
+
+}  // namespace
+
+Status ValidateResult(const v1::EvaluationResult& r) {
+  Status status = CheckStatusAndFitness(r);
+  if (status.ok()) status = CheckMeasures(r);
+  if (status.ok()) status = CheckString("reason", r.reason(), kMaxReasonBytes);
   if (!status.ok()) return status;
   if (r.cells() < 0) {
     return Status::InvalidArgument("cells " + std::to_string(r.cells()));
@@ -231,34 +277,7 @@ Status ValidateResult(const v1::EvaluationResult& r) {
   if (r.steps() < 0) {
     return Status::InvalidArgument("steps " + std::to_string(r.steps()));
   }
-  if (r.has_body()) {
-    const v1::BodySummary& b = r.body();
-    const std::pair<const char*, int32_t> counts[] = {
-        {"cells", b.cells()},
-        {"springs", b.springs()},
-        {"chambers", b.chambers()},
-        {"skin_edges", b.skin_edges()}};
-    for (const auto& [name, count] : counts) {
-      if (count < 0) {
-        return Status::InvalidArgument(std::string("body ") + name + " " +
-                                       std::to_string(count));
-      }
-    }
-    const std::pair<const char*, double> spreads[] = {
-        {"spread_major", b.spread_major()}, {"spread_minor", b.spread_minor()}};
-    for (const auto& [name, spread] : spreads) {
-      if (!(std::isfinite(spread) && spread >= 0.0)) {
-        return Status::InvalidArgument(std::string("body ") + name + " " +
-                                       ShortestDouble(spread));
-      }
-    }
-    if (b.spread_minor() > b.spread_major()) {
-      return Status::InvalidArgument(
-          "body spread_minor " + ShortestDouble(b.spread_minor()) +
-          " above spread_major " + ShortestDouble(b.spread_major()));
-    }
-  }
-  return Status::Ok();
+  return r.has_body() ? CheckBody(r.body()) : Status::Ok();
 }
 
 Status CheckWorkResult(const v1::WorkResult& r) {
