@@ -160,6 +160,83 @@ std::string DescribeWindow(const Analysis& a) {
   return text;
 }
 
+namespace {
+
+// Per cell: its means over the window, its e − c as a signal (into
+// `signals`), and its mean activity (into `activity` and the analysis).
+void SummariseCells(const Recording& recording, const Window& window,
+                    Analysis* a, std::vector<std::vector<double>>* signals,
+                    std::vector<double>* activity) {
+  const int n = window.size();
+  const int cells = recording.cells;
+  signals->assign(cells, std::vector<double>(n));
+  activity->assign(cells, 0.0);
+  a->cells.resize(cells);
+  const int first_activity = std::max(window.begin, 1);
+  for (int i = 0; i < cells; ++i) {
+    CellSummary& cell = a->cells[i];
+    cell.along_front = a->axes.along_front[i];
+    cell.along_left = a->axes.along_left[i];
+    for (int k = window.begin; k < window.end; ++k) {
+      const size_t index = static_cast<size_t>(k) * cells + i;
+      cell.mean_expand += recording.expand[index];
+      cell.mean_contract += recording.contract[index];
+      (*signals)[i][k - window.begin] = recording.actuation(k, i);
+      if (k >= first_activity) (*activity)[i] += Activity(recording, k, i);
+    }
+    cell.mean_expand /= n;
+    cell.mean_contract /= n;
+    if (window.end > first_activity) {
+      (*activity)[i] /= window.end - first_activity;
+    }
+    cell.mean_activity = (*activity)[i];
+    a->mean_activity += (*activity)[i] / cells;
+  }
+}
+
+// Each cell's stroke at `frequency` (A_max × amplitude × its summed rest
+// lengths), the amplitudes' mean and largest, and the drivers: the fewest
+// cells, largest stroke first (ties: lower index), whose strokes make up
+// half of the total.
+void MeasureStrokes(const Recording& recording,
+                    const std::vector<std::vector<double>>& signals,
+                    double frequency, Analysis* a) {
+  const int cells = recording.cells;
+  std::vector<double> rest_sum(cells, 0.0);
+  for (const Spring& s : recording.springs) {
+    rest_sum[s.a] += s.rest_length;
+    rest_sum[s.b] += s.rest_length;
+  }
+  double amplitude_sum = 0;
+  double amplitude_max = 0;
+  double stroke_total = 0;
+  for (int i = 0; i < cells; ++i) {
+    CellSummary& cell = a->cells[i];
+    cell.actuation = ComponentAt(signals[i], frequency);
+    cell.stroke =
+        recording.actuation_max * cell.actuation->amplitude * rest_sum[i];
+    amplitude_sum += cell.actuation->amplitude;
+    amplitude_max = std::max(amplitude_max, cell.actuation->amplitude);
+    stroke_total += *cell.stroke;
+  }
+  a->amplitude_mean = amplitude_sum / cells;
+  a->amplitude_max = amplitude_max;
+  std::vector<int> order(cells);
+  for (int i = 0; i < cells; ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](int x, int y) {
+    return *a->cells[x].stroke > *a->cells[y].stroke;
+  });
+  double held = 0;
+  for (int i : order) {
+    if (!(stroke_total > 0) || held >= 0.5 * stroke_total) break;
+    a->drivers.push_back(i);
+    a->cells[i].driver = true;
+    held += *a->cells[i].stroke;
+  }
+}
+
+}  // namespace
+
 Result<Analysis> Analyze(const Recording& recording,
                          const AnalysisOptions& options) {
   Result<WindowChoice> choice = ChooseWindow(recording, options);
@@ -187,32 +264,10 @@ Result<Analysis> Analyze(const Recording& recording,
   a.speed = a.axes.body_frame_distance / (window_steps * a.dt);
   a.activity = ActivityAlongAxes(recording, a.axes, *window);
 
-  // Per cell: means over the window, and its e − c as a signal.
+  std::vector<std::vector<double>> signals;
+  std::vector<double> activity;
+  SummariseCells(recording, *window, &a, &signals, &activity);
   const int n = window->size();
-  const int cells = recording.cells;
-  std::vector<std::vector<double>> signals(cells, std::vector<double>(n));
-  std::vector<double> activity(cells, 0.0);
-  a.cells.resize(cells);
-  const int first_activity = std::max(window->begin, 1);
-  for (int i = 0; i < cells; ++i) {
-    CellSummary& cell = a.cells[i];
-    cell.along_front = a.axes.along_front[i];
-    cell.along_left = a.axes.along_left[i];
-    for (int k = window->begin; k < window->end; ++k) {
-      const size_t index = static_cast<size_t>(k) * cells + i;
-      cell.mean_expand += recording.expand[index];
-      cell.mean_contract += recording.contract[index];
-      signals[i][k - window->begin] = recording.actuation(k, i);
-      if (k >= first_activity) activity[i] += Activity(recording, k, i);
-    }
-    cell.mean_expand /= n;
-    cell.mean_contract /= n;
-    if (window->end > first_activity) {
-      activity[i] /= window->end - first_activity;
-    }
-    cell.mean_activity = activity[i];
-    a.mean_activity += activity[i] / cells;
-  }
 
   // The dominant period: at least two cycles in the window.
   std::optional<double> frequency;
@@ -224,40 +279,7 @@ Result<Analysis> Analyze(const Recording& recording,
     a.periodic_fraction = dominant->periodic_fraction;
     a.distance_per_cycle =
         a.axes.body_frame_distance * *a.period_steps / window_steps;
-    // Strokes: A_max × amplitude × the cell's summed rest lengths.
-    std::vector<double> rest_sum(cells, 0.0);
-    for (const Spring& s : recording.springs) {
-      rest_sum[s.a] += s.rest_length;
-      rest_sum[s.b] += s.rest_length;
-    }
-    double amplitude_sum = 0;
-    double amplitude_max = 0;
-    double stroke_total = 0;
-    for (int i = 0; i < cells; ++i) {
-      CellSummary& cell = a.cells[i];
-      cell.actuation = ComponentAt(signals[i], *frequency);
-      cell.stroke =
-          recording.actuation_max * cell.actuation->amplitude * rest_sum[i];
-      amplitude_sum += cell.actuation->amplitude;
-      amplitude_max = std::max(amplitude_max, cell.actuation->amplitude);
-      stroke_total += *cell.stroke;
-    }
-    a.amplitude_mean = amplitude_sum / cells;
-    a.amplitude_max = amplitude_max;
-    // Drivers: the fewest cells, largest stroke first (ties: lower index),
-    // whose strokes make up half of the total.
-    std::vector<int> order(cells);
-    for (int i = 0; i < cells; ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(), [&](int x, int y) {
-      return *a.cells[x].stroke > *a.cells[y].stroke;
-    });
-    double held = 0;
-    for (int i : order) {
-      if (!(stroke_total > 0) || held >= 0.5 * stroke_total) break;
-      a.drivers.push_back(i);
-      a.cells[i].driver = true;
-      held += *a.cells[i].stroke;
-    }
+    MeasureStrokes(recording, signals, *frequency, &a);
   }
 
   a.front = Summarise(recording, *window, a.axes.front_back, Side::kFront,

@@ -89,6 +89,56 @@ Component ComponentAt(std::span<const double> signal, double frequency) {
       w_sum);
 }
 
+namespace {
+
+// The windowed signals' summed power spectrum, each zero-padded to `size`
+// points (a power of two): size / 2 + 1 values.
+std::vector<double> SummedPowerSpectrum(
+    const std::vector<std::vector<double>>& windowed, size_t size) {
+  std::vector<double> power(size / 2 + 1, 0.0);
+  Eigen::FFT<double> fft;
+  fft.SetFlag(Eigen::FFT<double>::HalfSpectrum);  // size / 2 + 1 values.
+  std::vector<double> padded(size, 0.0);
+  std::vector<std::complex<double>> spectrum;
+  for (const std::vector<double>& d : windowed) {
+    std::copy(d.begin(), d.end(), padded.begin());
+    fft.fwd(spectrum, padded);
+    for (size_t j = 0; j < power.size(); ++j) {
+      power[j] += std::norm(spectrum[j]);
+    }
+  }
+  return power;
+}
+
+// The frequency in [lo, hi] where `power` peaks, by golden-section search
+// (200 iterations at most, to a relative width of 1e-9).
+template <typename Power>
+double GoldenSectionPeak(double lo, double hi, Power power) {
+  const double ratio = (std::sqrt(5.0) - 1.0) / 2.0;
+  double a = hi - ratio * (hi - lo);
+  double b = lo + ratio * (hi - lo);
+  double pa = power(a);
+  double pb = power(b);
+  for (int iteration = 0; iteration < 200 && hi - lo > 1e-9 * hi; ++iteration) {
+    if (pa >= pb) {
+      hi = b;
+      b = a;
+      pb = pa;
+      a = hi - ratio * (hi - lo);
+      pa = power(a);
+    } else {
+      lo = a;
+      a = b;
+      pa = pb;
+      b = lo + ratio * (hi - lo);
+      pb = power(b);
+    }
+  }
+  return (lo + hi) / 2;
+}
+
+}  // namespace
+
 std::optional<DominantFrequency> FindDominantFrequency(
     const std::vector<std::vector<double>>& signals, double min_frequency) {
   if (signals.empty() || min_frequency > 0.5) return std::nullopt;
@@ -118,18 +168,7 @@ std::optional<DominantFrequency> FindDominantFrequency(
   // a prime factor p costs n·p (docs/analysis.md, "Dominant period").
   size_t size = 1;
   while (size < 4 * n) size <<= 1;
-  std::vector<double> power(size / 2 + 1, 0.0);
-  Eigen::FFT<double> fft;
-  fft.SetFlag(Eigen::FFT<double>::HalfSpectrum);  // size / 2 + 1 values.
-  std::vector<double> padded(size, 0.0);
-  std::vector<std::complex<double>> spectrum;
-  for (const std::vector<double>& d : windowed) {
-    std::copy(d.begin(), d.end(), padded.begin());
-    fft.fwd(spectrum, padded);
-    for (size_t j = 0; j < power.size(); ++j) {
-      power[j] += std::norm(spectrum[j]);
-    }
-  }
+  const std::vector<double> power = SummedPowerSpectrum(windowed, size);
   size_t first = static_cast<size_t>(std::ceil(min_frequency * size));
   if (first < 1) first = 1;
   if (first >= power.size()) first = power.size() - 1;
@@ -150,28 +189,8 @@ std::optional<DominantFrequency> FindDominantFrequency(
   double lo = std::max(min_frequency, static_cast<double>(best - 1) / size);
   double hi = std::min(0.5, static_cast<double>(best + 1) / size);
   if (lo > hi) lo = hi;
-  const double ratio = (std::sqrt(5.0) - 1.0) / 2.0;
-  double a = hi - ratio * (hi - lo);
-  double b = lo + ratio * (hi - lo);
-  double pa = summed_power(a);
-  double pb = summed_power(b);
-  for (int iteration = 0; iteration < 200 && hi - lo > 1e-9 * hi; ++iteration) {
-    if (pa >= pb) {
-      hi = b;
-      b = a;
-      pb = pa;
-      a = hi - ratio * (hi - lo);
-      pa = summed_power(a);
-    } else {
-      lo = a;
-      a = b;
-      pa = pb;
-      b = lo + ratio * (hi - lo);
-      pb = summed_power(b);
-    }
-  }
   DominantFrequency result;
-  result.frequency = (lo + hi) / 2;
+  result.frequency = GoldenSectionPeak(lo, hi, summed_power);
   const std::vector<std::complex<double>> e = Basis(n, result.frequency);
   double explained = 0;
   for (const std::vector<double>& d : windowed) {

@@ -321,6 +321,38 @@ int ContactSheet(const Options& o) {
   return Write(o.output, figures::ContactSheetSvg(title, entries, o.columns));
 }
 
+// The run figures' subcommands: fitness and contact-sheet.
+void AddRunFigures(CLI::App* figure, const std::shared_ptr<Options>& o,
+                   CLI::App** fitness_out) {
+  auto output = [&](CLI::App* sub) {
+    sub->add_option("-o,--output", o->output, "Output file (.svg)")->required();
+  };
+  CLI::App* fitness = figure->add_subcommand(
+      "fitness", "Best, mean and median fitness over generations");
+  fitness
+      ->add_option("--db", o->dbs,
+                   "Lineage store (repeat for several runs on one chart)")
+      ->required();
+  fitness
+      ->add_option("--run", o->source.run,
+                   "Run in each store (default: the latest)")
+      ->check(IdValidator(kMaxRunId));
+  output(fitness);
+  CLI::App* sheet = figure->add_subcommand(
+      "contact-sheet", "The best individual every N generations");
+  sheet->add_option("--db", o->dbs, "Lineage store")->required();
+  sheet->add_option("--run", o->source.run, "Run (default: the latest)")
+      ->check(IdValidator(kMaxRunId));
+  sheet->add_option("--every", o->every, "Every N generations (and the last)")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  sheet->add_option("--columns", o->columns, "Pictures per row")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
+  output(sheet);
+  *fitness_out = fitness;
+}
+
 }  // namespace
 
 Command AddFigureCommand(CLI::App& app) {
@@ -372,29 +404,8 @@ Command AddFigureCommand(CLI::App& app) {
       "guidance)");
   AddAnimatSourceOptions(guidance, &o->source);
   output(guidance);
-  CLI::App* fitness = figure->add_subcommand(
-      "fitness", "Best, mean and median fitness over generations");
-  fitness
-      ->add_option("--db", o->dbs,
-                   "Lineage store (repeat for several runs on one chart)")
-      ->required();
-  fitness
-      ->add_option("--run", o->source.run,
-                   "Run in each store (default: the latest)")
-      ->check(IdValidator(kMaxRunId));
-  output(fitness);
-  CLI::App* sheet = figure->add_subcommand(
-      "contact-sheet", "The best individual every N generations");
-  sheet->add_option("--db", o->dbs, "Lineage store")->required();
-  sheet->add_option("--run", o->source.run, "Run (default: the latest)")
-      ->check(IdValidator(kMaxRunId));
-  sheet->add_option("--every", o->every, "Every N generations (and the last)")
-      ->check(CLI::Range(1, 1000000))
-      ->capture_default_str();
-  sheet->add_option("--columns", o->columns, "Pictures per row")
-      ->check(CLI::Range(1, 100))
-      ->capture_default_str();
-  output(sheet);
+  CLI::App* fitness = nullptr;
+  AddRunFigures(figure, o, &fitness);
   return [o, strip, activity, cells, guidance, fitness] {
     Status path = CheckSvgPath(o->output);
     if (!path.ok()) return Fail(path.message());

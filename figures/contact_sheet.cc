@@ -49,6 +49,56 @@ Placed Place(const SheetEntry& e) {
   return placed;
 }
 
+// Every entry placed; returns the reach (radii from the origin to the
+// farthest cell, at least 1), which sets the common scale. Paths are cut
+// where they leave the picture (a good swimmer goes many body lengths).
+double PlaceAll(const std::vector<SheetEntry>& entries,
+                std::vector<Placed>* placed) {
+  double reach = 1;
+  for (const SheetEntry& e : entries) {
+    placed->push_back(Place(e));
+    for (Vec2 c : placed->back().cells) {
+      reach = std::max(reach, std::max(std::abs(c.x), std::abs(c.y)) + 1);
+    }
+  }
+  for (Placed& p : *placed) {
+    for (size_t k = 0; k < p.path.size(); ++k) {
+      if (std::max(std::abs(p.path[k].x), std::abs(p.path[k].y)) > reach) {
+        p.path.resize(k);
+        break;
+      }
+    }
+  }
+  return reach;
+}
+
+// One picture: its frame, springs, cells and path, centred at `centre`,
+// `scale` pixels per radius.
+void DrawBody(const SheetEntry& e, const Placed& placed, Vec2 centre,
+              double left, double picture_top, double scale,
+              svg::SvgWriter* svg) {
+  auto pixel = [&](Vec2 p) {
+    return Vec2(centre.x + p.x * scale, centre.y - p.y * scale);
+  };
+  svg->Rect({left + 2, picture_top}, kPicture - 4, kPicture, "none", "#cccccc");
+  for (const auto& [a, b] : e.springs) {
+    if (a < 0 || b < 0 || a >= static_cast<int>(e.cells.size()) ||
+        b >= static_cast<int>(e.cells.size())) {
+      continue;
+    }
+    svg->Line(pixel(placed.cells[a]), pixel(placed.cells[b]), "#888888", 1,
+              "spring");
+  }
+  for (Vec2 c : placed.cells) {
+    svg->Circle(pixel(c), kCellRadius * scale, "#9ecae1", "black", "cell");
+  }
+  if (placed.path.size() >= 2) {
+    std::vector<Vec2> points;
+    for (Vec2 p : placed.path) points.push_back(pixel(p));
+    svg->Polyline(points, "#d62728", 1.5, "", "path", "centre of mass");
+  }
+}
+
 }  // namespace
 
 std::string ContactSheetSvg(const std::string& title,
@@ -58,24 +108,9 @@ std::string ContactSheetSvg(const std::string& title,
   const int count = static_cast<int>(entries.size());
   const int shown_columns = std::max(1, std::min(columns, count));
   const int rows = (count + columns - 1) / columns;
-  // The scale fits the largest body; paths are cut where they leave the
-  // picture (a good swimmer goes many body lengths).
+  // The scale fits the largest body.
   std::vector<Placed> placed;
-  double reach = 1;  // Radii from the origin to the farthest cell.
-  for (const SheetEntry& e : entries) {
-    placed.push_back(Place(e));
-    for (Vec2 c : placed.back().cells) {
-      reach = std::max(reach, std::max(std::abs(c.x), std::abs(c.y)) + 1);
-    }
-  }
-  for (Placed& p : placed) {
-    for (size_t k = 0; k < p.path.size(); ++k) {
-      if (std::max(std::abs(p.path[k].x), std::abs(p.path[k].y)) > reach) {
-        p.path.resize(k);
-        break;
-      }
-    }
-  }
+  const double reach = PlaceAll(entries, &placed);
   const double scale = (kPicture / 2 - 8) / reach;  // Pixels per radius.
 
   // Every text is wrapped to fit: the title and the note to the sheet, a
@@ -113,29 +148,8 @@ std::string ContactSheetSvg(const std::string& title,
     const double left = (n % columns) * kPicture;
     const double picture_top = top + (n / columns) * (kPicture + below);
     const Vec2 centre(left + kPicture / 2, picture_top + kPicture / 2);
-    auto pixel = [&](Vec2 p) {
-      return Vec2(centre.x + p.x * scale, centre.y - p.y * scale);
-    };
-    const SheetEntry& e = entries[n];
     svg.BeginGroup("individual");
-    svg.Rect({left + 2, picture_top}, kPicture - 4, kPicture, "none",
-             "#cccccc");
-    for (const auto& [a, b] : e.springs) {
-      if (a < 0 || b < 0 || a >= static_cast<int>(e.cells.size()) ||
-          b >= static_cast<int>(e.cells.size())) {
-        continue;
-      }
-      svg.Line(pixel(placed[n].cells[a]), pixel(placed[n].cells[b]), "#888888",
-               1, "spring");
-    }
-    for (Vec2 c : placed[n].cells) {
-      svg.Circle(pixel(c), kCellRadius * scale, "#9ecae1", "black", "cell");
-    }
-    if (placed[n].path.size() >= 2) {
-      std::vector<Vec2> points;
-      for (Vec2 p : placed[n].path) points.push_back(pixel(p));
-      svg.Polyline(points, "#d62728", 1.5, "", "path", "centre of mass");
-    }
+    DrawBody(entries[n], placed[n], centre, left, picture_top, scale, &svg);
     double y = picture_top + kPicture;
     for (const std::string& line : headings[n]) {
       y += kLeading * kHeadingSize;

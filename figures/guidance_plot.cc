@@ -22,10 +22,15 @@ const char* Colour(size_t k) {
   return kColours[k % (sizeof(kColours) / sizeof(kColours[0]))];
 }
 
-}  // namespace
+// The world box: every source with its ring, every finite path point and
+// the start; its larger side with a 10% margin (at least 1.1 radii) and
+// its middle.
+struct WorldBox {
+  double span = 0.0;
+  Vec2 middle;
+};
 
-std::string GuidanceSvg(const GuidancePicture& picture) {
-  // The world box: every source, path point and the start, with a margin.
+WorldBox BoxOf(const GuidancePicture& picture) {
   double lo_x = picture.start.x, hi_x = picture.start.x;
   double lo_y = picture.start.y, hi_y = picture.start.y;
   auto include = [&](Vec2 p) {
@@ -41,8 +46,16 @@ std::string GuidanceSvg(const GuidancePicture& picture) {
     include(t.source + Vec2(ring, ring));
     for (Vec2 p : t.path) include(p);
   }
-  const double span = std::max({hi_x - lo_x, hi_y - lo_y, 1.0}) * 1.1;
-  const Vec2 middle((lo_x + hi_x) / 2, (lo_y + hi_y) / 2);
+  return {std::max({hi_x - lo_x, hi_y - lo_y, 1.0}) * 1.1,
+          Vec2((lo_x + hi_x) / 2, (lo_y + hi_y) / 2)};
+}
+
+}  // namespace
+
+std::string GuidanceSvg(const GuidancePicture& picture) {
+  const WorldBox box = BoxOf(picture);
+  const double span = box.span;
+  const Vec2 middle = box.middle;
   const double scale = (kPlot - 2 * kMargin) / span;  // Pixels per radius.
 
   const std::vector<std::string> title_lines =
@@ -81,7 +94,8 @@ std::string GuidanceSvg(const GuidancePicture& picture) {
   for (size_t k = 0; k < picture.trials.size(); ++k) {
     const GuidanceTrialPath& t = picture.trials[k];
     svg.BeginGroup("trial", "data-trial=\"" + std::to_string(k) + "\"");
-    svg.Circle(pixel(t.source), ring * scale, "#fff3e6", "#f0c8a0", "gradient");
+    svg.Circle(pixel(t.source), picture.decay_length * scale, "#fff3e6",
+               "#f0c8a0", "gradient");
     svg.Circle(pixel(t.source), 5, Colour(k), "black", "source");
     std::vector<Vec2> points;
     for (Vec2 p : t.path) {

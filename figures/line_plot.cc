@@ -76,15 +76,10 @@ std::vector<double> Ticks(double lo, double hi, int count) {
   return ticks;
 }
 
-std::string LinePlotSvg(const LinePlot& plot) {
-  const int panels = static_cast<int>(plot.panels.size());
-  const double height = kTop + panels * plot.panel_height +
-                        (panels > 0 ? panels - 1 : 0) * kGap + kBottom;
-  const double plot_width = plot.width - kLeft - kRight;
-  svg::SvgWriter svg(plot.width, height);
-  svg.Title(plot.title);
-  svg.Text({plot.width / 2, 20}, plot.title, 14, "middle");
+namespace {
 
+// The x values of every usable point of every panel.
+Range XRange(const LinePlot& plot) {
   Range x_range;
   for (const Panel& panel : plot.panels) {
     for (const Series& s : panel.series) {
@@ -94,6 +89,46 @@ std::string LinePlotSvg(const LinePlot& plot) {
     }
   }
   x_range.Settle();
+  return x_range;
+}
+
+// A panel's y range: its usable points' (from 0 when none is negative),
+// or its given bounds, out to whole ticks where the range is the data's.
+Range YRange(const Panel& panel) {
+  Range y_range;
+  bool nonnegative = true;
+  for (const Series& s : panel.series) {
+    for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+      if (!Usable(s.x[i], s.y[i])) continue;
+      y_range.Add(s.y[i]);
+      nonnegative = nonnegative && s.y[i] >= 0;
+    }
+  }
+  if (!y_range.empty() && nonnegative) y_range.lo = 0;
+  if (panel.y_min) y_range.lo = *panel.y_min;
+  if (panel.y_max) y_range.hi = *panel.y_max;
+  y_range.Settle();
+  const std::vector<double> rough = Ticks(y_range.lo, y_range.hi, 5);
+  if (rough.size() > 1) {
+    const double step = rough[1] - rough[0];
+    if (!panel.y_min) y_range.lo = std::floor(y_range.lo / step) * step;
+    if (!panel.y_max) y_range.hi = std::ceil(y_range.hi / step) * step;
+  }
+  return y_range;
+}
+
+}  // namespace
+
+std::string LinePlotSvg(const LinePlot& plot) {
+  const int panels = static_cast<int>(plot.panels.size());
+  const double height = kTop + panels * plot.panel_height +
+                        (panels > 0 ? panels - 1 : 0) * kGap + kBottom;
+  const double plot_width = plot.width - kLeft - kRight;
+  svg::SvgWriter svg(plot.width, height);
+  svg.Title(plot.title);
+  svg.Text({plot.width / 2, 20}, plot.title, 14, "middle");
+
+  const Range x_range = XRange(plot);
   const std::vector<double> x_ticks = Ticks(x_range.lo, x_range.hi, 8);
   const int x_decimals =
       x_ticks.size() > 1 ? Decimals(x_ticks[1] - x_ticks[0]) : 2;
@@ -105,26 +140,7 @@ std::string LinePlotSvg(const LinePlot& plot) {
     const Panel& panel = plot.panels[p];
     const double top = kTop + p * (plot.panel_height + kGap);
     const double bottom = top + plot.panel_height;
-    Range y_range;
-    bool nonnegative = true;
-    for (const Series& s : panel.series) {
-      for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
-        if (!Usable(s.x[i], s.y[i])) continue;
-        y_range.Add(s.y[i]);
-        nonnegative = nonnegative && s.y[i] >= 0;
-      }
-    }
-    if (!y_range.empty() && nonnegative) y_range.lo = 0;
-    if (panel.y_min) y_range.lo = *panel.y_min;
-    if (panel.y_max) y_range.hi = *panel.y_max;
-    y_range.Settle();
-    // Out to whole ticks, where the range is the data's.
-    const std::vector<double> rough = Ticks(y_range.lo, y_range.hi, 5);
-    if (rough.size() > 1) {
-      const double step = rough[1] - rough[0];
-      if (!panel.y_min) y_range.lo = std::floor(y_range.lo / step) * step;
-      if (!panel.y_max) y_range.hi = std::ceil(y_range.hi / step) * step;
-    }
+    const Range y_range = YRange(panel);
     auto py = [&](double y) {
       return bottom -
              plot.panel_height * (y - y_range.lo) / (y_range.hi - y_range.lo);

@@ -73,6 +73,81 @@ Result<std::vector<int>> CycleFrames(const Recording& recording,
   return frames;
 }
 
+namespace {
+
+// World to the drawing frame: origin at the first centre of mass, front
+// to the right.
+struct DrawingFrame {
+  Vec2 origin;
+  double heading = 0.0;
+  Vec2 operator()(Vec2 world) const {
+    return analysis::Rotate(world - origin, -heading);
+  }
+};
+
+// What every snapshot's cells cover in the drawing frame: the larger side
+// (radii) and the middle.
+struct Bounds {
+  double extent = 0.0;
+  Vec2 middle;
+};
+
+Bounds SnapshotBounds(const Recording& recording,
+                      const std::vector<int>& frames,
+                      const DrawingFrame& body) {
+  double lo_x = std::numeric_limits<double>::infinity();
+  double lo_y = lo_x;
+  double hi_x = -lo_x;
+  double hi_y = -lo_x;
+  for (int k : frames) {
+    for (int i = 0; i < recording.cells; ++i) {
+      const Vec2 p = body(recording.at(k, i));
+      const double r = CellRadius(recording, i);
+      lo_x = std::min(lo_x, p.x - r);
+      hi_x = std::max(hi_x, p.x + r);
+      lo_y = std::min(lo_y, p.y - r);
+      hi_y = std::max(hi_y, p.y + r);
+    }
+  }
+  return {std::max(hi_x - lo_x, hi_y - lo_y),
+          Vec2((lo_x + hi_x) / 2, (lo_y + hi_y) / 2)};
+}
+
+// Frame k's cells (discs of their radius, coloured by their actuation's
+// rate), springs and centre of mass, in the panel whose left edge is
+// `left`; `pixel` maps the drawing frame to pixels, `scale` pixels per
+// radius.
+template <typename Pixel>
+void DrawSnapshot(const Recording& recording, const StripOptions& options,
+                  const DrawingFrame& body, int k, int first, double left,
+                  Pixel pixel, double scale, svg::SvgWriter* svg) {
+  svg->Rect({left + 2, kTop}, kPanel - 4, kPanel, "none", "#cccccc");
+  svg->Text(
+      {left + kPanel / 2, kTop - 8},
+      "t = " + std::to_string(recording.steps[k] - recording.steps[first]), 12,
+      "middle");
+  for (int i = 0; i < recording.cells; ++i) {
+    const double rate =
+        k > 0 ? (recording.actuation(k, i) - recording.actuation(k - 1, i)) /
+                    recording.stride
+              : 0.0;
+    svg->Circle(pixel(body(recording.at(k, i))),
+                CellRadius(recording, i) * scale,
+                CellColour(rate, options.neutral_rate), "black", "cell");
+  }
+  for (const analysis::Spring& s : recording.springs) {
+    svg->Line(pixel(body(recording.at(k, s.a))),
+              pixel(body(recording.at(k, s.b))), "#444444", 1, "spring");
+  }
+  // The centre of mass at the cycle's start (cross) and now (dot).
+  const Vec2 start = pixel({0, 0});
+  svg->Line(start - Vec2(5, 0), start + Vec2(5, 0), "black", 1);
+  svg->Line(start - Vec2(0, 5), start + Vec2(0, 5), "black", 1);
+  svg->Circle(pixel(body(recording.CentreOfMass(k))), 2.5, "black", "");
+}
+
+}  // namespace
+
 Result<std::string> SnapshotStripSvg(const Recording& recording,
                                      const Analysis& analysis,
                                      const StripOptions& options) {
@@ -87,30 +162,14 @@ Result<std::string> SnapshotStripSvg(const Recording& recording,
   const int in_window =
       std::clamp(first - analysis.window.begin, 0, analysis.window.size() - 1);
   const Vec2 front = analysis.axes.FrontAt(in_window);
-  const double heading = std::atan2(front.y, front.x);
-  const Vec2 origin = recording.CentreOfMass(first);
-  auto body = [&](Vec2 world) {
-    return analysis::Rotate(world - origin, -heading);
-  };
+  const DrawingFrame body{recording.CentreOfMass(first),
+                          std::atan2(front.y, front.x)};
 
   // One scale for every snapshot: the extent of all of them.
-  double lo_x = std::numeric_limits<double>::infinity();
-  double lo_y = lo_x;
-  double hi_x = -lo_x;
-  double hi_y = -lo_x;
-  for (int k : *frames) {
-    for (int i = 0; i < recording.cells; ++i) {
-      const Vec2 p = body(recording.at(k, i));
-      const double r = CellRadius(recording, i);
-      lo_x = std::min(lo_x, p.x - r);
-      hi_x = std::max(hi_x, p.x + r);
-      lo_y = std::min(lo_y, p.y - r);
-      hi_y = std::max(hi_y, p.y + r);
-    }
-  }
-  const double extent = std::max(hi_x - lo_x, hi_y - lo_y);
+  const Bounds bounds = SnapshotBounds(recording, *frames, body);
+  const double extent = bounds.extent;
   const double scale = (kPanel - 16) / extent;  // Pixels per radius.
-  const Vec2 middle((lo_x + hi_x) / 2, (lo_y + hi_y) / 2);
+  const Vec2 middle = bounds.middle;
 
   const int snapshots = options.snapshots;
   const double width = snapshots * kPanel;
@@ -133,33 +192,10 @@ Result<std::string> SnapshotStripSvg(const Recording& recording,
     };
     svg.BeginGroup("snapshot",
                    "data-step=\"" + std::to_string(recording.steps[k]) + "\"");
-    svg.Rect({left + 2, kTop}, kPanel - 4, kPanel, "none", "#cccccc");
-    svg.Text(
-        {left + kPanel / 2, kTop - 8},
-        "t = " + std::to_string(recording.steps[k] - recording.steps[first]),
-        12, "middle");
-    // Cells as discs of their radius; the springs over them.
-    for (int i = 0; i < recording.cells; ++i) {
-      const double rate =
-          k > 0 ? (recording.actuation(k, i) - recording.actuation(k - 1, i)) /
-                      recording.stride
-                : 0.0;
-      svg.Circle(pixel(body(recording.at(k, i))),
-                 CellRadius(recording, i) * scale,
-                 CellColour(rate, options.neutral_rate), "black", "cell");
-    }
-    for (const analysis::Spring& s : recording.springs) {
-      svg.Line(pixel(body(recording.at(k, s.a))),
-               pixel(body(recording.at(k, s.b))), "#444444", 1, "spring");
-    }
-    // The centre of mass at the cycle's start (cross) and now (dot).
-    const Vec2 start = pixel({0, 0});
-    svg.Line(start - Vec2(5, 0), start + Vec2(5, 0), "black", 1);
-    svg.Line(start - Vec2(0, 5), start + Vec2(0, 5), "black", 1);
-    svg.Circle(pixel(body(recording.CentreOfMass(k))), 2.5, "black", "");
+    DrawSnapshot(recording, options, body, k, first, left, pixel, scale, &svg);
     if (j == snapshots - 1) {
-      svg.Arrow(start, pixel(body(recording.CentreOfMass(last))), "black", 7,
-                "distance");
+      svg.Arrow(pixel({0, 0}), pixel(body(recording.CentreOfMass(last))),
+                "black", 7, "distance");
     }
     svg.EndGroup();
   }
