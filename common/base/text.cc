@@ -65,4 +65,12 @@ std::string ForeignText(std::string_view message, size_t max_bytes) {
   return out;
 }
 
+std::string AsciiLowerCase(std::string_view name) {
+  std::string lower(name);
+  for (char& c : lower) {
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  }
+  return lower;
+}
+
 }  // namespace animat

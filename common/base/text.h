@@ -24,6 +24,10 @@ std::string Excerpt(std::string_view bytes, size_t max_bytes = 64);
 // escaped as by Excerpt (quotes and backslashes kept as they are).
 std::string ForeignText(std::string_view message, size_t max_bytes = 200);
 
+// `name` with its ASCII capitals in lower case, as the store and logs name
+// an enum value: "NUMERICAL_FAILURE" -> "numerical_failure".
+std::string AsciiLowerCase(std::string_view name);
+
 }  // namespace animat
 
 #endif  // ANIMAT_COMMON_BASE_TEXT_H_

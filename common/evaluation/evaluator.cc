@@ -20,13 +20,23 @@
 namespace animat {
 namespace {
 
-EvaluationResult Failure(EvalStatus status, std::string reason, int cells,
-                         int64_t steps) {
+// Where an evaluation stands: what a failure at this point reports.
+struct Progress {
+  int cells = 0;
+  int64_t steps = 0;
+  std::optional<BodySummary> body;  // Once built.
+};
+
+// Every failure, in one place: its status and reason with the cells,
+// steps and body reached (none before development).
+EvaluationResult Failed(const Progress& p, EvalStatus status,
+                        std::string reason) {
   EvaluationResult result;
   result.status = status;
   result.reason = std::move(reason);
-  result.cells = cells;
-  result.steps = steps;
+  result.cells = p.cells;
+  result.steps = p.steps;
+  result.body = p.body;
   return result;
 }
 
@@ -153,23 +163,6 @@ void SilenceMorphogen(const Network& network, int node,
   if (node < 0 || node >= network.node_count()) return;
   const int morphogen = network.nodes()[node].morphogen;
   if (morphogen >= 0) field->Silence(morphogen, grn);
-}
-
-// Where an evaluation stands: what a failure at this point reports.
-struct Progress {
-  int cells = 0;
-  int64_t steps = 0;
-  std::optional<BodySummary> body;  // Once built.
-};
-
-// Every failure of a developed network, in one place: its status and
-// reason with the cells, steps and body reached.
-EvaluationResult Failed(const Progress& p, EvalStatus status,
-                        std::string reason) {
-  EvaluationResult result =
-      Failure(status, std::move(reason), p.cells, p.steps);
-  result.body = p.body;
-  return result;
 }
 
 // Development's end as the evaluation's status.
@@ -590,12 +583,12 @@ EvaluationResult Evaluate(const Genome& genome, const ModelConfig& config,
                           const EvaluateOptions& options) {
   Status valid = ValidateGenome(genome);
   if (!valid.ok()) {
-    return Failure(EvalStatus::kInvalidGenome, valid.message(), 0, 0);
+    return Failed(Progress{}, EvalStatus::kInvalidGenome, valid.message());
   }
   const Network network = Network::Build(genome, config.grn);
   const Viability viability = network.CheckViability();
   if (!viability.viable) {
-    return Failure(EvalStatus::kNonViable, viability.reason, 0, 0);
+    return Failed(Progress{}, EvalStatus::kNonViable, viability.reason);
   }
   if (config.grn.precision == Precision::kFloat) {
     return Pipeline<float>(network, config, observer, options).Run();

@@ -1,6 +1,5 @@
 #include "master/dispatch/lease_scheduler.h"
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <utility>
 
@@ -35,8 +34,7 @@ Completion FromWorker(v1::WorkResult r, std::string evaluator,
   completion.worker = std::move(evaluator);
   completion.wall_seconds = r.wall_seconds();
   if (r.isa() != v1::WorkResult::ISA_UNSPECIFIED) {
-    completion.isa = v1::WorkResult::Isa_Name(r.isa());
-    for (char& c : completion.isa) c = static_cast<char>(std::tolower(c));
+    completion.isa = AsciiLowerCase(v1::WorkResult::Isa_Name(r.isa()));
   }
   completion.null_evaluation = null_evaluation;
   return completion;

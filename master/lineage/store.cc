@@ -10,6 +10,7 @@
 
 #include <google/protobuf/text_format.h>
 
+#include "common/base/text.h"
 #include "common/base/utc_time.h"
 #include "common/protocol/genome_wire.h"
 #include "master/lineage/schema.h"
@@ -372,8 +373,8 @@ Status Store::RecordEvaluations(int64_t run,
     const std::string now = Now();
     for (const Evaluation& e : batch) {
       const v1::EvaluationResult& r = e.result;
-      std::string status = v1::EvaluationResult::Status_Name(r.status());
-      for (char& c : status) c = static_cast<char>(std::tolower(c));
+      const std::string status =
+          AsciiLowerCase(v1::EvaluationResult::Status_Name(r.status()));
       insert->Bind(1, run)
           .Bind(2, static_cast<int64_t>(e.id))
           .Bind(3, status)

@@ -24,6 +24,13 @@ TEST(TextTest, ShortestDoubleIsShortAndReadsBack) {
   }
 }
 
+TEST(TextTest, AsciiLowerCaseLowersOnlyAsciiCapitals) {
+  EXPECT_EQ(AsciiLowerCase("NUMERICAL_FAILURE"), "numerical_failure");
+  EXPECT_EQ(AsciiLowerCase("Avx512"), "avx512");
+  EXPECT_EQ(AsciiLowerCase(""), "");
+  EXPECT_EQ(AsciiLowerCase("\xc3\x89t\xc3\xa9"), "\xc3\x89t\xc3\xa9");
+}
+
 TEST(TextTest, ExcerptEscapesAndCuts) {
   EXPECT_EQ(Excerpt("abc"), "abc");
   EXPECT_EQ(Excerpt("a\"b\\c\n\t\r\x01\xff"), "a\\\"b\\\\c\\n\\t\\r\\x01\\xff");

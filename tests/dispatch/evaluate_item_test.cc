@@ -3,9 +3,9 @@
 // same result.
 #include <gtest/gtest.h>
 
-#include <cctype>
 #include <string>
 
+#include "common/base/text.h"
 #include "common/genome/genome_proto.h"
 #include "common/kernels/isa.h"
 #include "tests/test_genome.h"
@@ -14,11 +14,9 @@
 namespace animat {
 namespace {
 
-// The result's path by name: "AVX512" for "avx512".
+// The result's path by name: "avx512" for AVX512.
 std::string Named(v1::WorkResult::Isa isa) {
-  std::string name = v1::WorkResult::Isa_Name(isa);
-  for (char& c : name) c = static_cast<char>(std::tolower(c));
-  return name;
+  return AsciiLowerCase(v1::WorkResult::Isa_Name(isa));
 }
 
 TEST(EvaluateItemTest, EachResultNamesItsPathAndEveryPathGivesTheSameBits) {

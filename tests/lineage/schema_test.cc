@@ -485,28 +485,41 @@ TEST(SchemaTest, Version4StoreGainsItsRunsConfigurationsAsTheirHistory) {
   EXPECT_EQ((*history)[1].from_generation, 7);
 }
 
+// Two births of run 1, the first evaluated ok with a distance and energy.
+constexpr char kTwoBirths[] =
+    " (1, 0, 0, 'random', x'0a0b0c', '0000000000000001', 3, 't0'),"
+    " (1, 1, 0, 'random', x'0a0b0d', '0000000000000002', 3, 't1');"
+    "INSERT INTO evaluations (run_id, id, status, reason, fitness,"
+    " distance, energy) VALUES (1, 0, 'ok', '', 0.5, 0.5, 12.0);";
+
+// Writes a store of schema `version` holding run 1 and the births (and
+// evaluations) of `rows`, SQL that follows "INSERT INTO births VALUES";
+// returns its individuals as that version reads them (none on failure).
+std::vector<std::vector<std::string>> OldStore(const TempStorePath& file,
+                                               int version,
+                                               const std::string& rows) {
+  Result<std::unique_ptr<sql::Database>> db = sql::Database::Open(file.path());
+  EXPECT_TRUE(db.ok()) << db.status().ToString();
+  if (!db.ok()) return {};
+  const Status migrated = Migrate(**db, version);
+  EXPECT_TRUE(migrated.ok()) << migrated.ToString();
+  const Status written = (*db)->Execute(
+      "INSERT INTO runs VALUES (1, 5, x'0a00', 'text', '00000000000000ff',"
+      " 'build', '2026-01-01T00:00:00.000Z', NULL, 'running');"
+      "INSERT INTO births VALUES" +
+      rows);
+  EXPECT_TRUE(written.ok()) << written.ToString();
+  db->reset();
+  return RawRows(file.path(), "SELECT * FROM individuals ORDER BY id");
+}
+
 // A store written by schema version 6 gains the trials table, empty: its
 // evaluations keep every column as they were; guidance results recorded
 // after have their trials.
 TEST(SchemaTest, Version6StoreGainsAnEmptyTrialsTable) {
   TempStorePath file("v6");
-  {
-    Result<std::unique_ptr<sql::Database>> db =
-        sql::Database::Open(file.path());
-    ASSERT_TRUE(db.ok()) << db.status().ToString();
-    ASSERT_TRUE(Migrate(**db, 6).ok());
-    const Status written = (*db)->Execute(
-        "INSERT INTO runs VALUES (1, 5, x'0a00', 'text', '00000000000000ff',"
-        " 'build', '2026-01-01T00:00:00.000Z', NULL, 'running');"
-        "INSERT INTO births VALUES"
-        " (1, 0, 0, 'random', x'0a0b0c', '0000000000000001', 3, 't0'),"
-        " (1, 1, 0, 'random', x'0a0b0d', '0000000000000002', 3, 't1');"
-        "INSERT INTO evaluations (run_id, id, status, reason, fitness,"
-        " distance, energy) VALUES (1, 0, 'ok', '', 0.5, 0.5, 12.0);");
-    ASSERT_TRUE(written.ok()) << written.ToString();
-  }
   const std::vector<std::vector<std::string>> before =
-      RawRows(file.path(), "SELECT * FROM individuals ORDER BY id");
+      OldStore(file, 6, kTwoBirths);
   ASSERT_EQ(before.size(), 2u);
 
   Result<std::unique_ptr<Store>> store = Store::Open(file.path());
@@ -532,23 +545,8 @@ TEST(SchemaTest, Version6StoreGainsAnEmptyTrialsTable) {
 // results recorded after have it.
 TEST(SchemaTest, Version7StoreGainsMaxOverlapNullInEveryOldRow) {
   TempStorePath file("v7");
-  {
-    Result<std::unique_ptr<sql::Database>> db =
-        sql::Database::Open(file.path());
-    ASSERT_TRUE(db.ok()) << db.status().ToString();
-    ASSERT_TRUE(Migrate(**db, 7).ok());
-    const Status written = (*db)->Execute(
-        "INSERT INTO runs VALUES (1, 5, x'0a00', 'text', '00000000000000ff',"
-        " 'build', '2026-01-01T00:00:00.000Z', NULL, 'running');"
-        "INSERT INTO births VALUES"
-        " (1, 0, 0, 'random', x'0a0b0c', '0000000000000001', 3, 't0'),"
-        " (1, 1, 0, 'random', x'0a0b0d', '0000000000000002', 3, 't1');"
-        "INSERT INTO evaluations (run_id, id, status, reason, fitness,"
-        " distance, energy) VALUES (1, 0, 'ok', '', 0.5, 0.5, 12.0);");
-    ASSERT_TRUE(written.ok()) << written.ToString();
-  }
   const std::vector<std::vector<std::string>> before =
-      RawRows(file.path(), "SELECT * FROM individuals ORDER BY id");
+      OldStore(file, 7, kTwoBirths);
   ASSERT_EQ(before.size(), 2u);
 
   Result<std::unique_ptr<Store>> store = Store::Open(file.path());
@@ -580,24 +578,13 @@ TEST(SchemaTest, Version7StoreGainsMaxOverlapNullInEveryOldRow) {
 // results recorded after have it (NULL when not known).
 TEST(SchemaTest, Version8StoreGainsIsaNullInEveryOldRow) {
   TempStorePath file("v8");
-  {
-    Result<std::unique_ptr<sql::Database>> db =
-        sql::Database::Open(file.path());
-    ASSERT_TRUE(db.ok()) << db.status().ToString();
-    ASSERT_TRUE(Migrate(**db, 8).ok());
-    const Status written = (*db)->Execute(
-        "INSERT INTO runs VALUES (1, 5, x'0a00', 'text', '00000000000000ff',"
-        " 'build', '2026-01-01T00:00:00.000Z', NULL, 'running');"
-        "INSERT INTO births VALUES"
-        " (1, 0, 0, 'random', x'0a0b0c', '0000000000000001', 3, 't0'),"
-        " (1, 1, 0, 'random', x'0a0b0d', '0000000000000002', 3, 't1'),"
-        " (1, 2, 0, 'random', x'0a0b0e', '0000000000000003', 3, 't2');"
-        "INSERT INTO evaluations (run_id, id, status, reason, fitness,"
-        " max_overlap) VALUES (1, 0, 'ok', '', 0.5, 0.25);");
-    ASSERT_TRUE(written.ok()) << written.ToString();
-  }
   const std::vector<std::vector<std::string>> before =
-      RawRows(file.path(), "SELECT * FROM individuals ORDER BY id");
+      OldStore(file, 8,
+               " (1, 0, 0, 'random', x'0a0b0c', '0000000000000001', 3, 't0'),"
+               " (1, 1, 0, 'random', x'0a0b0d', '0000000000000002', 3, 't1'),"
+               " (1, 2, 0, 'random', x'0a0b0e', '0000000000000003', 3, 't2');"
+               "INSERT INTO evaluations (run_id, id, status, reason, fitness,"
+               " max_overlap) VALUES (1, 0, 'ok', '', 0.5, 0.25);");
   ASSERT_EQ(before.size(), 3u);
 
   Result<std::unique_ptr<Store>> store = Store::Open(file.path());
