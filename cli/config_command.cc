@@ -3,13 +3,16 @@
 // The built-in defaults as text protobuf on standard output: the model
 // configuration (animat.v1.Config, for --config of simulate, analyze, ...)
 // or, with --run, the run configuration (animat.v1.RunConfig, for
-// animat evolve and animat-master). Either reads back as it is.
+// animat evolve and animat-master), each field under a comment saying
+// what it is and what values it takes (from the parameter tables).
+// Either reads back as it is.
 #include <cstdio>
 #include <memory>
 #include <string>
 
 #include "cli/commands.h"
 #include "common/evaluation/model_config.h"
+#include "common/io/param_table.h"
 #include "common/io/proto_file.h"
 #include "master/evolution/evolution_params.h"
 
@@ -27,13 +30,17 @@ int Defaults(const Options& o) {
         "# proto-file: proto/animat/v1/evolution.proto\n"
         "# proto-message: animat.v1.RunConfig\n"
         "# The defaults of this build (animat config defaults --run).\n\n" +
-        SerializeProto(RunSettingsToProto(RunSettings{}), ProtoFormat::kText);
+        AnnotateText(SerializeProto(RunSettingsToProto(RunSettings{}),
+                                    ProtoFormat::kText),
+                     RunParamDocs());
   } else {
     text =
         "# proto-file: proto/animat/v1/config.proto\n"
         "# proto-message: animat.v1.Config\n"
         "# The defaults of this build (animat config defaults).\n\n" +
-        SerializeProto(ConfigToProto(ModelConfig{}), ProtoFormat::kText);
+        AnnotateText(
+            SerializeProto(ConfigToProto(ModelConfig{}), ProtoFormat::kText),
+            ModelParamDocs());
   }
   Status status = WriteFile("-", text);
   return status.ok() ? 0 : Fail(status.message());

@@ -1,37 +1,66 @@
 #include "common/development/development_params.h"
 
 #include "common/base/validate.h"
+#include "common/io/param_table.h"
 
 namespace animat {
+namespace {
+
+using D = DevelopmentParams;
+using S = SignalParams;
+
+// In the proto's order (docs/model.md §4). The bounds that name another
+// field are checked after the table's.
+constexpr ParamRow<D> kDevelopment[] = {
+    {"steps", &D::steps, ParamRange::Closed(1, 1000000), "development steps"},
+    {"max_cells", &D::max_cells, ParamRange::Closed(1, 1024),
+     "division stops at this many cells"},
+    {"divide_threshold", &D::divide_threshold, ParamRange::Closed(0.0, 1.0),
+     "a cell divides when its DIVIDE value is at least this"},
+    {"last_division_step", &D::last_division_step,
+     ParamRange::Closed(0, 1000000),
+     "a division at this step or later fails the embryo; at most steps"},
+    {"min_cells", &D::min_cells, ParamRange::Closed(1, 1024),
+     "fewer cells at the end fail the embryo; at most max_cells"},
+    {"size_gain", &D::size_gain, ParamRange::NonNegative(),
+     "daughter radius 1 + size_gain * SIZE (radii)"},
+    {"mechanics_substeps", &D::mechanics_substeps, ParamRange::Closed(0, 1000),
+     "mechanics sub-steps per development step"},
+    {"stiffness", &D::stiffness, ParamRange::NonNegative(),
+     "repulsion k_dev (force per radius of overlap)"},
+    {"adhesion_ratio", &D::adhesion_ratio, ParamRange::NonNegative(),
+     "adhesion stiffness as a fraction of k_dev"},
+    {"interaction_range", &D::interaction_range, ParamRange::Positive(),
+     "pairs interact while d < range * (r_i + r_j)"},
+    {"mechanics_dt", &D::mechanics_dt, ParamRange::Positive(),
+     "overdamped step: x += F * mechanics_dt"},
+};
+
+// In the proto's order (docs/model.md §5).
+constexpr ParamRow<S> kSignals[] = {
+    {"maternal_distance", &S::maternal_distance, ParamRange::NonNegative(),
+     "the maternal sources' distance from the origin (radii)"},
+    {"maternal_length", &S::maternal_length, ParamRange::Positive(),
+     "maternal value exp(-|x - s| / maternal_length) (radii)"},
+    {"kernel_length", &S::kernel_length, ParamRange::Positive(),
+     "endogenous kernel K(d) = exp(-d / kernel_length) (radii)"},
+    {"delay_length", &S::delay_length, ParamRange::Positive(),
+     "delay floor(d / delay_length + 0.5) steps (radii per step)"},
+    {"max_delay", &S::max_delay, ParamRange::Closed(0, kMaxSignalDelay),
+     "the longest delay (steps)"},
+};
+
+}  // namespace
+
 Status DevelopmentParamsFromProto(const v1::DevelopmentConfig& m,
                                   DevelopmentParams* params) {
   DevelopmentParams p = *params;
-  if (m.has_steps()) p.steps = m.steps();
-  if (m.has_max_cells()) p.max_cells = m.max_cells();
-  if (m.has_divide_threshold()) p.divide_threshold = m.divide_threshold();
-  if (m.has_last_division_step()) p.last_division_step = m.last_division_step();
-  if (m.has_min_cells()) p.min_cells = m.min_cells();
-  if (m.has_size_gain()) p.size_gain = m.size_gain();
-  if (m.has_mechanics_substeps()) p.mechanics_substeps = m.mechanics_substeps();
-  if (m.has_stiffness()) p.stiffness = m.stiffness();
-  if (m.has_adhesion_ratio()) p.adhesion_ratio = m.adhesion_ratio();
-  if (m.has_interaction_range()) p.interaction_range = m.interaction_range();
-  if (m.has_mechanics_dt()) p.mechanics_dt = m.mechanics_dt();
+  ReadParams<D>(m, kDevelopment, &p);
   Status status = FirstError({
-      RequireIntInRange("development.steps", p.steps, 1, 1000000),
-      RequireIntInRange("development.max_cells", p.max_cells, 1, 1024),
-      RequireInRange("development.divide_threshold", p.divide_threshold, 0.0,
-                     1.0),
+      CheckParams<D>("development", p, kDevelopment),
       RequireIntInRange("development.last_division_step", p.last_division_step,
                         0, p.steps),
       RequireIntInRange("development.min_cells", p.min_cells, 1, p.max_cells),
-      RequireNonNegative("development.size_gain", p.size_gain),
-      RequireIntInRange("development.mechanics_substeps", p.mechanics_substeps,
-                        0, 1000),
-      RequireNonNegative("development.stiffness", p.stiffness),
-      RequireNonNegative("development.adhesion_ratio", p.adhesion_ratio),
-      RequirePositive("development.interaction_range", p.interaction_range),
-      RequirePositive("development.mechanics_dt", p.mechanics_dt),
   });
   if (!status.ok()) return status;
   *params = p;
@@ -40,18 +69,8 @@ Status DevelopmentParamsFromProto(const v1::DevelopmentConfig& m,
 
 Status SignalParamsFromProto(const v1::SignalConfig& m, SignalParams* params) {
   SignalParams p = *params;
-  if (m.has_maternal_distance()) p.maternal_distance = m.maternal_distance();
-  if (m.has_maternal_length()) p.maternal_length = m.maternal_length();
-  if (m.has_kernel_length()) p.kernel_length = m.kernel_length();
-  if (m.has_delay_length()) p.delay_length = m.delay_length();
-  if (m.has_max_delay()) p.max_delay = m.max_delay();
-  Status status = FirstError({
-      RequireNonNegative("signals.maternal_distance", p.maternal_distance),
-      RequirePositive("signals.maternal_length", p.maternal_length),
-      RequirePositive("signals.kernel_length", p.kernel_length),
-      RequirePositive("signals.delay_length", p.delay_length),
-      RequireIntInRange("signals.max_delay", p.max_delay, 0, kMaxSignalDelay),
-  });
+  ReadParams<S>(m, kSignals, &p);
+  Status status = CheckParams<S>("signals", p, kSignals);
   if (!status.ok()) return status;
   *params = p;
   return Status::Ok();
@@ -59,28 +78,27 @@ Status SignalParamsFromProto(const v1::SignalConfig& m, SignalParams* params) {
 
 v1::DevelopmentConfig DevelopmentParamsToProto(const DevelopmentParams& p) {
   v1::DevelopmentConfig m;
-  m.set_steps(p.steps);
-  m.set_max_cells(p.max_cells);
-  m.set_divide_threshold(p.divide_threshold);
-  m.set_last_division_step(p.last_division_step);
-  m.set_min_cells(p.min_cells);
-  m.set_size_gain(p.size_gain);
-  m.set_mechanics_substeps(p.mechanics_substeps);
-  m.set_stiffness(p.stiffness);
-  m.set_adhesion_ratio(p.adhesion_ratio);
-  m.set_interaction_range(p.interaction_range);
-  m.set_mechanics_dt(p.mechanics_dt);
+  WriteParams<D>(p, kDevelopment, &m);
   return m;
 }
 
 v1::SignalConfig SignalParamsToProto(const SignalParams& p) {
   v1::SignalConfig m;
-  m.set_maternal_distance(p.maternal_distance);
-  m.set_maternal_length(p.maternal_length);
-  m.set_kernel_length(p.kernel_length);
-  m.set_delay_length(p.delay_length);
-  m.set_max_delay(p.max_delay);
+  WriteParams<S>(p, kSignals, &m);
   return m;
+}
+
+ParamTable<DevelopmentParams> DevelopmentParamTable() { return kDevelopment; }
+ParamTable<SignalParams> SignalParamTable() { return kSignals; }
+
+std::vector<ParamDoc> DevelopmentParamDocs() {
+  std::vector<ParamDoc> docs =
+      DescribeParams<D>("development", v1::DevelopmentConfig(), kDevelopment);
+  for (ParamDoc& doc :
+       DescribeParams<S>("signals", v1::SignalConfig(), kSignals)) {
+    docs.push_back(std::move(doc));
+  }
+  return docs;
 }
 
 }  // namespace animat

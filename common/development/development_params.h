@@ -3,8 +3,11 @@
 #ifndef ANIMAT_COMMON_DEVELOPMENT_DEVELOPMENT_PARAMS_H_
 #define ANIMAT_COMMON_DEVELOPMENT_DEVELOPMENT_PARAMS_H_
 
+#include <vector>
+
 #include "animat/v1/config.pb.h"
 #include "common/base/status.h"
+#include "common/io/param_table.h"
 
 namespace animat {
 
@@ -42,6 +45,12 @@ Status SignalParamsFromProto(const v1::SignalConfig& message,
 // Every field set.
 v1::DevelopmentConfig DevelopmentParamsToProto(const DevelopmentParams& p);
 v1::SignalConfig SignalParamsToProto(const SignalParams& p);
+// The parameters' tables (common/io/param_table.h), which the conversions
+// and checks read, and the lines of both ("development.*", "signals.*")
+// for `animat config defaults`.
+ParamTable<DevelopmentParams> DevelopmentParamTable();
+ParamTable<SignalParams> SignalParamTable();
+std::vector<ParamDoc> DevelopmentParamDocs();
 
 }  // namespace animat
 

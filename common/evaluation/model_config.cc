@@ -7,47 +7,57 @@
 namespace animat {
 namespace {
 
+using E = EvaluationParams;
+using G = GuidanceParams;
+
+// In the proto's order (docs/model.md §8, §10.1).
+constexpr ParamRow<E> kEvaluation[] = {
+    {"equilibration_steps", &E::equilibration_steps,
+     ParamRange::Closed(0, 100000000), "steps with the network stopped"},
+    {"equilibration_damping", &E::equilibration_damping,
+     ParamRange::Closed(0.0, 1.0), "v *= this after each equilibration step"},
+    {"motion_steps", &E::motion_steps, ParamRange::Closed(0, 100000000),
+     "steps with the network running; fitness is measured over them"},
+    {"max_coordinate", &E::max_coordinate, ParamRange::Positive(),
+     "a coordinate beyond this magnitude fails (radii)"},
+    {"check_interval", &E::check_interval, ParamRange::Closed(1, 100000000),
+     "steps between the finiteness and coordinate checks"},
+    {"min_chambers", &E::min_chambers, ParamRange::Closed(0, 1000),
+     "fewer chambers fail as a degenerate body"},
+    {"energy_budget", &E::energy_budget, ParamRange::Positive(),
+     "B of DISTANCE_WITHIN_ENERGY_BUDGET (force times length)"},
+};
+
+constexpr EnumPair kFitnessKinds[] = {
+    {static_cast<int>(FitnessKind::kDistance), v1::EvaluationConfig::DISTANCE},
+    {static_cast<int>(FitnessKind::kDistanceWithinEnergyBudget),
+     v1::EvaluationConfig::DISTANCE_WITHIN_ENERGY_BUDGET},
+};
+
+constexpr EnumRow<E> kEvaluationEnums[] = {
+    MakeEnumRow<&E::fitness>("fitness", kFitnessKinds,
+                             "what selection maximises"),
+};
+
+// In the proto's order (docs/model.md §10.2).
+constexpr ParamRow<G> kGuidance[] = {
+    {"enabled", &G::enabled, ParamRange::Any(),
+     "fitness is the guidance fitness (needs evaluation.fitness DISTANCE)"},
+    {"trials", &G::trials, ParamRange::Closed(1, kMaxGuidanceTrials),
+     "K, the trials per evaluation"},
+    {"source_distance", &G::source_distance, ParamRange::Positive(),
+     "D, the source's distance from the starting centre of mass (radii)"},
+    {"decay_length", &G::decay_length, ParamRange::Positive(),
+     "lambda_c: a skin cell reads exp(-d / decay_length) (radii)"},
+};
+
 Status EvaluationParamsFromProto(const v1::EvaluationConfig& m,
                                  EvaluationParams* params) {
   EvaluationParams p = *params;
-  if (m.has_equilibration_steps()) {
-    p.equilibration_steps = m.equilibration_steps();
-  }
-  if (m.has_equilibration_damping()) {
-    p.equilibration_damping = m.equilibration_damping();
-  }
-  if (m.has_motion_steps()) p.motion_steps = m.motion_steps();
-  if (m.has_max_coordinate()) p.max_coordinate = m.max_coordinate();
-  if (m.has_check_interval()) p.check_interval = m.check_interval();
-  if (m.has_min_chambers()) p.min_chambers = m.min_chambers();
-  if (m.has_fitness()) {
-    switch (m.fitness()) {
-      case v1::EvaluationConfig::FITNESS_UNSPECIFIED:
-        break;
-      case v1::EvaluationConfig::DISTANCE:
-        p.fitness = FitnessKind::kDistance;
-        break;
-      case v1::EvaluationConfig::DISTANCE_WITHIN_ENERGY_BUDGET:
-        p.fitness = FitnessKind::kDistanceWithinEnergyBudget;
-        break;
-      default:
-        return Status::InvalidArgument("evaluation.fitness: unknown value " +
-                                       std::to_string(m.fitness()));
-    }
-  }
-  if (m.has_energy_budget()) p.energy_budget = m.energy_budget();
+  ReadParams<E>(m, kEvaluation, &p);
   Status status = FirstError({
-      RequireIntInRange("evaluation.equilibration_steps", p.equilibration_steps,
-                        0, 100000000),
-      RequireInRange("evaluation.equilibration_damping",
-                     p.equilibration_damping, 0.0, 1.0),
-      RequireIntInRange("evaluation.motion_steps", p.motion_steps, 0,
-                        100000000),
-      RequirePositive("evaluation.max_coordinate", p.max_coordinate),
-      RequireIntInRange("evaluation.check_interval", p.check_interval, 1,
-                        100000000),
-      RequireIntInRange("evaluation.min_chambers", p.min_chambers, 0, 1000),
-      RequirePositive("evaluation.energy_budget", p.energy_budget),
+      ReadEnums<E>("evaluation", m, kEvaluationEnums, &p),
+      CheckParams<E>("evaluation", p, kEvaluation),
   });
   if (!status.ok()) return status;
   *params = p;
@@ -57,27 +67,11 @@ Status EvaluationParamsFromProto(const v1::EvaluationConfig& m,
 Status GuidanceParamsFromProto(const v1::GuidanceConfig& m,
                                GuidanceParams* params) {
   GuidanceParams p = *params;
-  if (m.has_enabled()) p.enabled = m.enabled();
-  if (m.has_trials()) p.trials = m.trials();
-  if (m.has_source_distance()) p.source_distance = m.source_distance();
-  if (m.has_decay_length()) p.decay_length = m.decay_length();
-  Status status = FirstError({
-      RequireIntInRange("guidance.trials", p.trials, 1, kMaxGuidanceTrials),
-      RequirePositive("guidance.source_distance", p.source_distance),
-      RequirePositive("guidance.decay_length", p.decay_length),
-  });
+  ReadParams<G>(m, kGuidance, &p);
+  Status status = CheckParams<G>("guidance", p, kGuidance);
   if (!status.ok()) return status;
   *params = p;
   return Status::Ok();
-}
-
-v1::GuidanceConfig GuidanceParamsToProto(const GuidanceParams& p) {
-  v1::GuidanceConfig m;
-  m.set_enabled(p.enabled);
-  m.set_trials(p.trials);
-  m.set_source_distance(p.source_distance);
-  m.set_decay_length(p.decay_length);
-  return m;
 }
 
 }  // namespace
@@ -123,19 +117,37 @@ v1::Config ConfigToProto(const ModelConfig& c) {
   *m.mutable_development() = DevelopmentParamsToProto(c.development);
   *m.mutable_signals() = SignalParamsToProto(c.signals);
   *m.mutable_physics() = PhysicsParamsToProto(c.physics);
-  v1::EvaluationConfig* e = m.mutable_evaluation();
-  e->set_equilibration_steps(c.evaluation.equilibration_steps);
-  e->set_equilibration_damping(c.evaluation.equilibration_damping);
-  e->set_motion_steps(c.evaluation.motion_steps);
-  e->set_max_coordinate(c.evaluation.max_coordinate);
-  e->set_check_interval(c.evaluation.check_interval);
-  e->set_min_chambers(c.evaluation.min_chambers);
-  e->set_fitness(c.evaluation.fitness == FitnessKind::kDistance
-                     ? v1::EvaluationConfig::DISTANCE
-                     : v1::EvaluationConfig::DISTANCE_WITHIN_ENERGY_BUDGET);
-  e->set_energy_budget(c.evaluation.energy_budget);
-  *m.mutable_guidance() = GuidanceParamsToProto(c.guidance);
+  WriteParams<E>(c.evaluation, kEvaluation, m.mutable_evaluation(),
+                 kEvaluationEnums);
+  WriteParams<G>(c.guidance, kGuidance, m.mutable_guidance());
   return m;
+}
+
+std::vector<ParamDoc> ModelParamDocs() {
+  std::vector<ParamDoc> docs = GrnParamDocs();
+  auto append = [&docs](std::vector<ParamDoc> more) {
+    for (ParamDoc& doc : more) docs.push_back(std::move(doc));
+  };
+  append(DevelopmentParamDocs());
+  append(PhysicsParamDocs());
+  append(DescribeParams<E>("evaluation", v1::EvaluationConfig(), kEvaluation,
+                           kEvaluationEnums));
+  append(DescribeParams<G>("guidance", v1::GuidanceConfig(), kGuidance));
+  return docs;
+}
+
+Status CheckModelParamTables() {
+  return FirstError({
+      CheckParamTable<GrnParams>(v1::GrnConfig(), GrnParamTable(),
+                                 GrnEnumTable()),
+      CheckParamTable<DevelopmentParams>(v1::DevelopmentConfig(),
+                                         DevelopmentParamTable()),
+      CheckParamTable<SignalParams>(v1::SignalConfig(), SignalParamTable()),
+      CheckParamTable<PhysicsParams>(v1::PhysicsConfig(), PhysicsParamTable(),
+                                     PhysicsEnumTable()),
+      CheckParamTable<E>(v1::EvaluationConfig(), kEvaluation, kEvaluationEnums),
+      CheckParamTable<G>(v1::GuidanceConfig(), kGuidance),
+  });
 }
 
 Result<ModelConfig> ReadConfigFile(const std::string& path) {

@@ -4,11 +4,13 @@
 #define ANIMAT_COMMON_EVALUATION_MODEL_CONFIG_H_
 
 #include <string>
+#include <vector>
 
 #include "animat/v1/config.pb.h"
 #include "common/base/status.h"
 #include "common/development/development_params.h"
 #include "common/grn/grn_params.h"
+#include "common/io/param_table.h"
 #include "common/physics/physics_params.h"
 
 namespace animat {
@@ -61,6 +63,12 @@ Status ConfigFromProto(const v1::Config& message, ModelConfig* config);
 
 // Every field set, defaults included.
 v1::Config ConfigToProto(const ModelConfig& config);
+
+// Every parameter's line ("physics.mass", ...) for `animat config
+// defaults`, from the tables that convert and check them.
+std::vector<ParamDoc> ModelParamDocs();
+// Every table of the model names its message's fields (CheckParamTable).
+Status CheckModelParamTables();
 
 // Reads a configuration file (.json or .txtpb) over the defaults. Errors
 // start with the path.

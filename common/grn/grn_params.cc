@@ -1,38 +1,43 @@
 #include "common/grn/grn_params.h"
 
-#include <string>
-
 #include "common/base/validate.h"
 
 namespace animat {
+namespace {
+
+using G = GrnParams;
+
+// In the proto's order (docs/model.md §2, §3).
+constexpr ParamRow<G> kRows[] = {
+    {"weight_max", &G::weight_max, ParamRange::NonNegative(),
+     "weight where factor and region coordinates coincide"},
+    {"decay_length", &G::decay_length, ParamRange::Positive(),
+     "affinity w = weight_max * exp(-d / decay_length)"},
+    {"cutoff", &G::cutoff, ParamRange::NonNegative(),
+     "pairs at distance >= cutoff do not bind"},
+    {"dt", &G::dt, ParamRange::PositiveAtMost(1.0),
+     "the concentration update's step"},
+};
+
+constexpr EnumPair kPrecisions[] = {
+    {static_cast<int>(Precision::kDouble), v1::GrnConfig::DOUBLE},
+    {static_cast<int>(Precision::kFloat), v1::GrnConfig::FLOAT},
+};
+
+constexpr EnumRow<G> kEnums[] = {
+    MakeEnumRow<&G::precision>(
+        "precision", kPrecisions,
+        "arithmetic of the network and the signals (docs/accuracy.md)"),
+};
+
+}  // namespace
 
 Status GrnParamsFromProto(const v1::GrnConfig& m, GrnParams* params) {
   GrnParams p = *params;
-  if (m.has_weight_max()) p.weight_max = m.weight_max();
-  if (m.has_decay_length()) p.decay_length = m.decay_length();
-  if (m.has_cutoff()) p.cutoff = m.cutoff();
-  if (m.has_dt()) p.dt = m.dt();
-  if (m.has_precision()) {
-    switch (m.precision()) {
-      case v1::GrnConfig::PRECISION_UNSPECIFIED:
-        break;
-      case v1::GrnConfig::DOUBLE:
-        p.precision = Precision::kDouble;
-        break;
-      case v1::GrnConfig::FLOAT:
-        p.precision = Precision::kFloat;
-        break;
-      default:
-        return Status::InvalidArgument("grn.precision: unknown value " +
-                                       std::to_string(m.precision()));
-    }
-  }
+  ReadParams<G>(m, kRows, &p);
   Status status = FirstError({
-      RequireNonNegative("grn.weight_max", p.weight_max),
-      RequirePositive("grn.decay_length", p.decay_length),
-      RequireNonNegative("grn.cutoff", p.cutoff),
-      RequirePositive("grn.dt", p.dt),
-      RequireInRange("grn.dt", p.dt, 0.0, 1.0),
+      ReadEnums<G>("grn", m, kEnums, &p),
+      CheckParams<G>("grn", p, kRows),
   });
   if (!status.ok()) return status;
   *params = p;
@@ -41,13 +46,15 @@ Status GrnParamsFromProto(const v1::GrnConfig& m, GrnParams* params) {
 
 v1::GrnConfig GrnParamsToProto(const GrnParams& p) {
   v1::GrnConfig m;
-  m.set_weight_max(p.weight_max);
-  m.set_decay_length(p.decay_length);
-  m.set_cutoff(p.cutoff);
-  m.set_dt(p.dt);
-  m.set_precision(p.precision == Precision::kFloat ? v1::GrnConfig::FLOAT
-                                                   : v1::GrnConfig::DOUBLE);
+  WriteParams<G>(p, kRows, &m, kEnums);
   return m;
+}
+
+ParamTable<GrnParams> GrnParamTable() { return kRows; }
+EnumTable<GrnParams> GrnEnumTable() { return kEnums; }
+
+std::vector<ParamDoc> GrnParamDocs() {
+  return DescribeParams<G>("grn", v1::GrnConfig(), kRows, kEnums);
 }
 
 }  // namespace animat

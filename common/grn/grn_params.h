@@ -3,8 +3,11 @@
 #ifndef ANIMAT_COMMON_GRN_GRN_PARAMS_H_
 #define ANIMAT_COMMON_GRN_GRN_PARAMS_H_
 
+#include <vector>
+
 #include "animat/v1/config.pb.h"
 #include "common/base/status.h"
+#include "common/io/param_table.h"
 
 namespace animat {
 
@@ -26,6 +29,11 @@ struct GrnParams {
 Status GrnParamsFromProto(const v1::GrnConfig& message, GrnParams* params);
 // Every field set.
 v1::GrnConfig GrnParamsToProto(const GrnParams& params);
+// The parameters' tables (common/io/param_table.h), which the conversions
+// and checks read, and their lines for `animat config defaults`.
+ParamTable<GrnParams> GrnParamTable();
+EnumTable<GrnParams> GrnEnumTable();
+std::vector<ParamDoc> GrnParamDocs();
 
 }  // namespace animat
 

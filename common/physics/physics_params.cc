@@ -10,29 +10,33 @@ namespace {
 
 // The numeric parameters, in the proto's order (docs/model.md §7).
 constexpr ParamRow<PhysicsParams> kRows[] = {
-    {"mass", &PhysicsParams::mass, ParamRange::Positive(), "of every cell"},
+    {"mass", &PhysicsParams::mass, ParamRange::Positive(),
+     "the mass of every cell"},
     {"stiffness", &PhysicsParams::stiffness, ParamRange::NonNegative(),
-     "spring k, force per radius"},
+     "spring k (force per radius)"},
     {"damping", &PhysicsParams::damping, ParamRange::NonNegative(),
-     "spring gamma, force per unit speed"},
+     "spring gamma (force per unit speed)"},
     {"pressure", &PhysicsParams::pressure, ParamRange::NonNegative(),
-     "chamber c_p"},
+     "c_p, the chambers' pressure coefficient"},
     {"drag_normal", &PhysicsParams::drag_normal, ParamRange::NonNegative(),
-     "d_N"},
+     "d_N, the normal drag coefficient"},
     {"drag_tangential", &PhysicsParams::drag_tangential,
-     ParamRange::NonNegative(), "d_T"},
+     ParamRange::NonNegative(),
+     "d_T, the tangential drag coefficient (the paper: d_N / 200)"},
     {"dt", &PhysicsParams::dt, ParamRange::Positive(),
      "time per simulation step"},
     {"actuation_max", &PhysicsParams::actuation_max,
-     ParamRange::HalfOpen(0.0, 0.5), "A_max"},
+     ParamRange::HalfOpen(0.0, 0.5), "A_max, the largest actuation amplitude"},
     {"min_rest_fraction", &PhysicsParams::min_rest_fraction,
      ParamRange::Positive(), "a rest length never below this times L0"},
     {"substeps", &PhysicsParams::substeps, ParamRange::Closed(1, 1024),
      "physics sub-steps per simulation step"},
     {"contact_stiffness", &PhysicsParams::contact_stiffness,
-     ParamRange::NonNegative(), "k_c, force per radius of overlap"},
+     ParamRange::NonNegative(),
+     "k_c (force per radius of overlap); NATIVE only"},
     {"contact_damping", &PhysicsParams::contact_damping,
-     ParamRange::NonNegative(), "gamma_c, force per unit approach speed"},
+     ParamRange::NonNegative(),
+     "gamma_c (force per unit approach speed); NATIVE only"},
 };
 
 // "rk4" -> "RK4": the enum value's name in config files.
@@ -84,8 +88,44 @@ const char* ContactRuleName(ContactRule rule) {
 
 namespace {
 
-// physics.contact_rule, or the deprecated physics.contacts of model v2.
-Status ContactRuleFromProto(const v1::PhysicsConfig& m, ContactRule* rule) {
+using PC = v1::PhysicsConfig;
+
+constexpr EnumPair kIntegrators[] = {
+    {static_cast<int>(Integrator::kSemiImplicitEuler), PC::SEMI_IMPLICIT_EULER},
+    {static_cast<int>(Integrator::kVelocityVerlet), PC::VELOCITY_VERLET},
+    {static_cast<int>(Integrator::kRk4), PC::RK4},
+    {static_cast<int>(Integrator::kSsprk3), PC::SSPRK3},
+    {static_cast<int>(Integrator::kRalston3), PC::RALSTON3},
+};
+constexpr EnumPair kDragUpdates[] = {
+    {static_cast<int>(DragUpdate::kExplicit), PC::EXPLICIT},
+    {static_cast<int>(DragUpdate::kStable), PC::STABLE},
+};
+constexpr EnumPair kBackends[] = {
+    {static_cast<int>(PhysicsBackend::kNative), PC::NATIVE},
+    {static_cast<int>(PhysicsBackend::kBullet), PC::BULLET},
+};
+constexpr EnumPair kContactRules[] = {
+    {static_cast<int>(ContactRule::kNone), PC::NONE},
+    {static_cast<int>(ContactRule::kUnjoined), PC::UNJOINED},
+    {static_cast<int>(ContactRule::kAll), PC::ALL},
+};
+
+constexpr EnumRow<PhysicsParams> kEnums[] = {
+    MakeEnumRow<&PhysicsParams::integrator>("integrator", kIntegrators,
+                                            "the motion's integrator"),
+    MakeEnumRow<&PhysicsParams::drag_update>(
+        "drag_update", kDragUpdates,
+        "drag from the step's start (EXPLICIT) or its end (STABLE)"),
+    MakeEnumRow<&PhysicsParams::backend>("backend", kBackends,
+                                         "who integrates the motion"),
+    MakeEnumRow<&PhysicsParams::contact_rule>(
+        "contact_rule", kContactRules,
+        "which overlapping cells push apart (v3: UNJOINED)"),
+};
+
+// The deprecated physics.contacts of model v2, read into contact_rule.
+Status ContactsFromProto(const v1::PhysicsConfig& m, ContactRule* rule) {
   if (m.has_contacts() && m.has_contact_rule()) {
     return Status::InvalidArgument(
         "physics.contacts: the model v2 form of physics.contact_rule "
@@ -93,122 +133,27 @@ Status ContactRuleFromProto(const v1::PhysicsConfig& m, ContactRule* rule) {
   }
   if (m.has_contacts()) {
     *rule = m.contacts() ? ContactRule::kAll : ContactRule::kNone;
-    return Status::Ok();
   }
-  if (!m.has_contact_rule()) return Status::Ok();
-  switch (m.contact_rule()) {
-    case v1::PhysicsConfig::CONTACT_RULE_UNSPECIFIED:
-      return Status::Ok();
-    case v1::PhysicsConfig::NONE:
-      *rule = ContactRule::kNone;
-      return Status::Ok();
-    case v1::PhysicsConfig::UNJOINED:
-      *rule = ContactRule::kUnjoined;
-      return Status::Ok();
-    case v1::PhysicsConfig::ALL:
-      *rule = ContactRule::kAll;
-      return Status::Ok();
-    default:
-      return Status::InvalidArgument("physics.contact_rule: unknown value " +
-                                     std::to_string(m.contact_rule()));
-  }
-}
-
-v1::PhysicsConfig::ContactRule ContactRuleToProto(ContactRule rule) {
-  switch (rule) {
-    case ContactRule::kNone:
-      return v1::PhysicsConfig::NONE;
-    case ContactRule::kUnjoined:
-      return v1::PhysicsConfig::UNJOINED;
-    case ContactRule::kAll:
-      return v1::PhysicsConfig::ALL;
-  }
-  return v1::PhysicsConfig::CONTACT_RULE_UNSPECIFIED;
+  return Status::Ok();
 }
 
 }  // namespace
 
 ParamTable<PhysicsParams> PhysicsParamTable() { return kRows; }
+EnumTable<PhysicsParams> PhysicsEnumTable() { return kEnums; }
 
-namespace {
-
-Status IntegratorFromProto(const v1::PhysicsConfig& m, PhysicsParams* p) {
-  if (m.has_integrator()) {
-    switch (m.integrator()) {
-      case v1::PhysicsConfig::INTEGRATOR_UNSPECIFIED:
-        break;
-      case v1::PhysicsConfig::SEMI_IMPLICIT_EULER:
-        p->integrator = Integrator::kSemiImplicitEuler;
-        break;
-      case v1::PhysicsConfig::VELOCITY_VERLET:
-        p->integrator = Integrator::kVelocityVerlet;
-        break;
-      case v1::PhysicsConfig::RK4:
-        p->integrator = Integrator::kRk4;
-        break;
-      case v1::PhysicsConfig::SSPRK3:
-        p->integrator = Integrator::kSsprk3;
-        break;
-      case v1::PhysicsConfig::RALSTON3:
-        p->integrator = Integrator::kRalston3;
-        break;
-      default:
-        return Status::InvalidArgument("physics.integrator: unknown value " +
-                                       std::to_string(m.integrator()));
-    }
-  }
-  return Status::Ok();
+std::vector<ParamDoc> PhysicsParamDocs() {
+  return DescribeParams<PhysicsParams>("physics", v1::PhysicsConfig(), kRows,
+                                       kEnums);
 }
-
-Status DragUpdateFromProto(const v1::PhysicsConfig& m, PhysicsParams* p) {
-  if (m.has_drag_update()) {
-    switch (m.drag_update()) {
-      case v1::PhysicsConfig::DRAG_UPDATE_UNSPECIFIED:
-        break;
-      case v1::PhysicsConfig::EXPLICIT:
-        p->drag_update = DragUpdate::kExplicit;
-        break;
-      case v1::PhysicsConfig::STABLE:
-        p->drag_update = DragUpdate::kStable;
-        break;
-      default:
-        return Status::InvalidArgument("physics.drag_update: unknown value " +
-                                       std::to_string(m.drag_update()));
-    }
-  }
-  return Status::Ok();
-}
-
-Status BackendFromProto(const v1::PhysicsConfig& m, PhysicsParams* p) {
-  if (m.has_backend()) {
-    switch (m.backend()) {
-      case v1::PhysicsConfig::BACKEND_UNSPECIFIED:
-        break;
-      case v1::PhysicsConfig::NATIVE:
-        p->backend = PhysicsBackend::kNative;
-        break;
-      case v1::PhysicsConfig::BULLET:
-        p->backend = PhysicsBackend::kBullet;
-        break;
-      default:
-        return Status::InvalidArgument("physics.backend: unknown value " +
-                                       std::to_string(m.backend()));
-    }
-  }
-  return Status::Ok();
-}
-
-}  // namespace
 
 Status PhysicsParamsFromProto(const v1::PhysicsConfig& m,
                               PhysicsParams* params) {
   PhysicsParams p = *params;
   ReadParams<PhysicsParams>(m, kRows, &p);
   Status status = FirstError({
-      IntegratorFromProto(m, &p),
-      DragUpdateFromProto(m, &p),
-      BackendFromProto(m, &p),
-      ContactRuleFromProto(m, &p.contact_rule),
+      ReadEnums<PhysicsParams>("physics", m, kEnums, &p),
+      ContactsFromProto(m, &p.contact_rule),
   });
   if (!status.ok()) return status;
   status = FirstError({
@@ -237,31 +182,7 @@ Status PhysicsParamsFromProto(const v1::PhysicsConfig& m,
 
 v1::PhysicsConfig PhysicsParamsToProto(const PhysicsParams& p) {
   v1::PhysicsConfig m;
-  WriteParams<PhysicsParams>(p, kRows, &m);
-  switch (p.integrator) {
-    case Integrator::kSemiImplicitEuler:
-      m.set_integrator(v1::PhysicsConfig::SEMI_IMPLICIT_EULER);
-      break;
-    case Integrator::kVelocityVerlet:
-      m.set_integrator(v1::PhysicsConfig::VELOCITY_VERLET);
-      break;
-    case Integrator::kRk4:
-      m.set_integrator(v1::PhysicsConfig::RK4);
-      break;
-    case Integrator::kSsprk3:
-      m.set_integrator(v1::PhysicsConfig::SSPRK3);
-      break;
-    case Integrator::kRalston3:
-      m.set_integrator(v1::PhysicsConfig::RALSTON3);
-      break;
-  }
-  m.set_drag_update(p.drag_update == DragUpdate::kStable
-                        ? v1::PhysicsConfig::STABLE
-                        : v1::PhysicsConfig::EXPLICIT);
-  m.set_backend(p.backend == PhysicsBackend::kBullet
-                    ? v1::PhysicsConfig::BULLET
-                    : v1::PhysicsConfig::NATIVE);
-  m.set_contact_rule(ContactRuleToProto(p.contact_rule));
+  WriteParams<PhysicsParams>(p, kRows, &m, kEnums);
   return m;
 }
 

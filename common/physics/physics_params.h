@@ -3,6 +3,8 @@
 #ifndef ANIMAT_COMMON_PHYSICS_PHYSICS_PARAMS_H_
 #define ANIMAT_COMMON_PHYSICS_PHYSICS_PARAMS_H_
 
+#include <vector>
+
 #include "animat/v1/config.pb.h"
 #include "common/base/status.h"
 #include "common/io/param_table.h"
@@ -67,9 +69,12 @@ Status PhysicsParamsFromProto(const v1::PhysicsConfig& message,
                               PhysicsParams* params);
 // Every field set but the deprecated physics.contacts.
 v1::PhysicsConfig PhysicsParamsToProto(const PhysicsParams& params);
-// The numeric parameters' table (common/io/param_table.h), which both
-// conversions and the checks read.
+// The parameters' tables (common/io/param_table.h), which both
+// conversions and the checks read, and their lines for
+// `animat config defaults`.
 ParamTable<PhysicsParams> PhysicsParamTable();
+EnumTable<PhysicsParams> PhysicsEnumTable();
+std::vector<ParamDoc> PhysicsParamDocs();
 
 }  // namespace animat
 

@@ -1,9 +1,11 @@
 #include "master/evolution/evolution_params.h"
 
 #include <limits>
+#include <vector>
 
 #include "common/base/validate.h"
 #include "common/genome/genome.h"
+#include "common/io/param_table.h"
 #include "common/io/proto_file.h"
 
 namespace animat {
@@ -28,83 +30,67 @@ constexpr long long kMaxInitialUnits =
      kOutputChannels) /
     2;
 
-Status MutationParamsFromProto(const v1::MutationConfig& m,
-                               MutationParams* params) {
-  MutationParams p = *params;
-  if (m.has_type_rate()) p.type_rate = m.type_rate();
-  if (m.has_sign_rate()) p.sign_rate = m.sign_rate();
-  if (m.has_coordinate_rate()) p.coordinate_rate = m.coordinate_rate();
-  if (m.has_coordinate_sigma()) p.coordinate_sigma = m.coordinate_sigma();
-  if (m.has_duplication_rate()) p.duplication_rate = m.duplication_rate();
-  if (m.has_deletion_rate()) p.deletion_rate = m.deletion_rate();
-  if (m.has_max_run_length()) p.max_run_length = m.max_run_length();
-  Status status = FirstError({
-      RequireInRange("evolution.mutation.type_rate", p.type_rate, 0.0, 1.0),
-      RequireInRange("evolution.mutation.sign_rate", p.sign_rate, 0.0, 1.0),
-      RequireInRange("evolution.mutation.coordinate_rate", p.coordinate_rate,
-                     0.0, 1.0),
-      RequireInRange("evolution.mutation.coordinate_sigma", p.coordinate_sigma,
-                     0.0, kMaxCoordinateSigma),
-      RequireInRange("evolution.mutation.duplication_rate", p.duplication_rate,
-                     0.0, 1.0),
-      RequireInRange("evolution.mutation.deletion_rate", p.deletion_rate, 0.0,
-                     1.0),
-      RequireIntInRange("evolution.mutation.max_run_length", p.max_run_length,
-                        1, kIntMax),
-  });
-  if (!status.ok()) return status;
-  *params = p;
-  return Status::Ok();
-}
+using M = MutationParams;
+using P = EvolutionParams;
 
-v1::MutationConfig MutationParamsToProto(const MutationParams& p) {
-  v1::MutationConfig m;
-  m.set_type_rate(p.type_rate);
-  m.set_sign_rate(p.sign_rate);
-  m.set_coordinate_rate(p.coordinate_rate);
-  m.set_coordinate_sigma(p.coordinate_sigma);
-  m.set_duplication_rate(p.duplication_rate);
-  m.set_deletion_rate(p.deletion_rate);
-  m.set_max_run_length(p.max_run_length);
-  return m;
-}
+// In the proto's order (docs/evolution.md).
+constexpr ParamRow<M> kMutation[] = {
+    {"type_rate", &M::type_rate, ParamRange::Closed(0.0, 1.0),
+     "per element: its type redrawn"},
+    {"sign_rate", &M::sign_rate, ParamRange::Closed(0.0, 1.0),
+     "per element: its sign flipped"},
+    {"coordinate_rate", &M::coordinate_rate, ParamRange::Closed(0.0, 1.0),
+     "per element: its coordinates stepped"},
+    {"coordinate_sigma", &M::coordinate_sigma,
+     ParamRange::Closed(0.0, kMaxCoordinateSigma),
+     "the normal step per coordinate axis"},
+    {"duplication_rate", &M::duplication_rate, ParamRange::Closed(0.0, 1.0),
+     "per genome: a run of elements duplicated"},
+    {"deletion_rate", &M::deletion_rate, ParamRange::Closed(0.0, 1.0),
+     "per genome: a run of elements deleted"},
+    {"max_run_length", &M::max_run_length, ParamRange::Closed(1, kIntMax),
+     "runs of [1, max_run_length] elements"},
+};
+
+// In the checks' order; the elite's bound names the population and is
+// checked after the table's.
+constexpr ParamRow<P> kEvolution[] = {
+    {"seed", &P::seed, ParamRange::Any(), "the run's random streams"},
+    {"population", &P::population, ParamRange::Closed(2, kIntMax),
+     "individuals per generation"},
+    {"generations", &P::generations, ParamRange::Closed(1, kIntMax),
+     "generations evaluated, the first included"},
+    {"elite", &P::elite, ParamRange::Closed(0, kIntMax),
+     "the best copied unchanged; less than population"},
+    {"tournament_size", &P::tournament_size,
+     ParamRange::Closed(1, kMaxTournamentSize), "contestants per tournament"},
+    {"crossover_fraction", &P::crossover_fraction, ParamRange::Closed(0.0, 1.0),
+     "children made by crossover"},
+    {"crossover_points", &P::crossover_points,
+     ParamRange::Closed(1, kMaxCrossoverPoints), "cuts per crossover"},
+    {"initial_units", &P::initial_units,
+     ParamRange::Closed(1, kMaxInitialUnits),
+     "regulatory units of a random genome"},
+    {"initial_min_fitness", &P::initial_min_fitness, ParamRange::NonNegative(),
+     "generation 0 redraws a genome below this fitness"},
+    {"max_elements", &P::max_elements,
+     ParamRange::Closed(1, static_cast<double>(kMaxGenomeElements)),
+     "a longer child is replaced by a copy of its parent"},
+};
 
 }  // namespace
 
 Status EvolutionParamsFromProto(const v1::EvolutionConfig& m,
                                 EvolutionParams* params) {
   EvolutionParams p = *params;
-  if (m.has_seed()) p.seed = m.seed();
-  if (m.has_population()) p.population = m.population();
-  if (m.has_generations()) p.generations = m.generations();
-  if (m.has_elite()) p.elite = m.elite();
-  if (m.has_tournament_size()) p.tournament_size = m.tournament_size();
-  if (m.has_crossover_fraction()) p.crossover_fraction = m.crossover_fraction();
-  if (m.has_crossover_points()) p.crossover_points = m.crossover_points();
-  if (m.has_initial_units()) p.initial_units = m.initial_units();
-  if (m.has_initial_min_fitness()) {
-    p.initial_min_fitness = m.initial_min_fitness();
-  }
-  if (m.has_max_elements()) p.max_elements = m.max_elements();
+  ReadParams<P>(m, kEvolution, &p);
+  ReadParams<M>(m.mutation(), kMutation, &p.mutation);
   Status status = FirstError({
-      RequireIntInRange("evolution.population", p.population, 2, kIntMax),
-      RequireIntInRange("evolution.generations", p.generations, 1, kIntMax),
+      CheckParams<P>("evolution", p, kEvolution),
       // Elite < population (population >= 2 is checked first, so the range
       // is never empty when this is reached).
       RequireIntInRange("evolution.elite", p.elite, 0, p.population - 1LL),
-      RequireIntInRange("evolution.tournament_size", p.tournament_size, 1,
-                        kMaxTournamentSize),
-      RequireInRange("evolution.crossover_fraction", p.crossover_fraction, 0.0,
-                     1.0),
-      RequireIntInRange("evolution.crossover_points", p.crossover_points, 1,
-                        kMaxCrossoverPoints),
-      MutationParamsFromProto(m.mutation(), &p.mutation),
-      RequireIntInRange("evolution.initial_units", p.initial_units, 1,
-                        kMaxInitialUnits),
-      RequireNonNegative("evolution.initial_min_fitness",
-                         p.initial_min_fitness),
-      RequireIntInRange("evolution.max_elements", p.max_elements, 1,
-                        static_cast<long long>(kMaxGenomeElements)),
+      CheckParams<M>("evolution.mutation", p.mutation, kMutation),
   });
   if (!status.ok()) return status;
   *params = p;
@@ -113,18 +99,32 @@ Status EvolutionParamsFromProto(const v1::EvolutionConfig& m,
 
 v1::EvolutionConfig EvolutionParamsToProto(const EvolutionParams& p) {
   v1::EvolutionConfig m;
-  m.set_seed(p.seed);
-  m.set_population(p.population);
-  m.set_generations(p.generations);
-  m.set_elite(p.elite);
-  m.set_tournament_size(p.tournament_size);
-  m.set_crossover_fraction(p.crossover_fraction);
-  m.set_crossover_points(p.crossover_points);
-  *m.mutable_mutation() = MutationParamsToProto(p.mutation);
-  m.set_initial_units(p.initial_units);
-  m.set_initial_min_fitness(p.initial_min_fitness);
-  m.set_max_elements(p.max_elements);
+  WriteParams<P>(p, kEvolution, &m);
+  WriteParams<M>(p.mutation, kMutation, m.mutable_mutation());
   return m;
+}
+
+std::vector<ParamDoc> RunParamDocs() {
+  std::vector<ParamDoc> docs;
+  for (ParamDoc& doc : ModelParamDocs()) {
+    doc.name = "model." + doc.name;
+    docs.push_back(std::move(doc));
+  }
+  for (const std::vector<ParamDoc>& more :
+       {DescribeParams<P>("evolution", v1::EvolutionConfig(), kEvolution),
+        DescribeParams<M>("evolution.mutation", v1::MutationConfig(),
+                          kMutation)}) {
+    for (const ParamDoc& doc : more) docs.push_back(doc);
+  }
+  return docs;
+}
+
+Status CheckRunParamTables() {
+  return FirstError({
+      CheckModelParamTables(),
+      CheckParamTable<P>(v1::EvolutionConfig(), kEvolution),
+      CheckParamTable<M>(v1::MutationConfig(), kMutation),
+  });
 }
 
 Status RunSettingsFromProto(const v1::RunConfig& message,

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "animat/v1/evolution.pb.h"
 #include "common/base/status.h"
@@ -52,6 +53,12 @@ Status EvolutionParamsFromProto(const v1::EvolutionConfig& message,
                                 EvolutionParams* params);
 // Every field set.
 v1::EvolutionConfig EvolutionParamsToProto(const EvolutionParams& params);
+
+// Every parameter's line of a run configuration ("model.physics.mass",
+// "evolution.elite", ...) for `animat config defaults --run`.
+std::vector<ParamDoc> RunParamDocs();
+// Every table of the run configuration names its message's fields.
+Status CheckRunParamTables();
 
 struct RunSettings {
   ModelConfig model;
