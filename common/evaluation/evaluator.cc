@@ -86,7 +86,17 @@ struct MotionOutcome {
   std::string problem;  // Why it failed; "" when it ran to the end.
   // The deepest unjoined overlap at the end of any step (model §8.6).
   double max_overlap = 0.0;
+  // Sum over steps of SoftBody::HeldActuation(), when holding costs.
+  double held = 0.0;
 };
+
+// E (model §10.1): the work of changing rest lengths, plus the holding
+// cost when there is one (none: the work alone, bit for bit).
+double Energy(const EvaluationParams& ev, const SoftBody& body,
+              const MotionOutcome& motion) {
+  const double work = body.actuation_work();
+  return ev.holding_cost > 0.0 ? work + ev.holding_cost * motion.held : work;
+}
 
 // Shows the observer the signals motion step `step` applied.
 template <typename S>
@@ -137,6 +147,7 @@ MotionOutcome RunMotion(const ModelConfig& config, GrnBatchT<S>& grn,
     grn.Step();
     ReadActuation(grn, &expand, &contract);
     soft_body.SetActuation(expand, contract);
+    if (ev.holding_cost > 0.0) outcome.held += soft_body.HeldActuation();
     stepper.Step(state);
     ++outcome.steps;
     outcome.max_overlap =
@@ -410,7 +421,7 @@ class Pipeline {
     }
     Swum swum;
     swum.distance = Length(CentreOfMass(state_) - start);
-    swum.energy = soft_body_->actuation_work();
+    swum.energy = Energy(ev_, *soft_body_, motion);
     swum.fitness = swum.distance;
     if (std::isfinite(swum.distance) && std::isfinite(swum.energy)) {
       swum.fitness = Objective(ev_, swum.distance, swum.energy);
@@ -452,7 +463,7 @@ class Pipeline {
     if (!out->motion.problem.empty()) return;
     const Vec2 end = CentreOfMass(trial_state);
     out->distance = Length(end - start);
-    out->energy = trial_body.actuation_work();
+    out->energy = Energy(config_.evaluation, trial_body, out->motion);
     out->source_distance = Length(end - chemical.source);
     StateHash hash;
     HashFinalState(trial_state, grn, &hash);

@@ -26,6 +26,8 @@ constexpr ParamRow<E> kEvaluation[] = {
      "fewer chambers fail as a degenerate body"},
     {"energy_budget", &E::energy_budget, ParamRange::Positive(),
      "B of DISTANCE_WITHIN_ENERGY_BUDGET (force times length)"},
+    {"holding_cost", &E::holding_cost, ParamRange::NonNegative(),
+     "c_h: each motion step adds c_h * sum |L - L0| to the energy"},
 };
 
 constexpr EnumPair kFitnessKinds[] = {

@@ -35,6 +35,10 @@ struct EvaluationParams {
   // B of kDistanceWithinEnergyBudget, > 0: about the median work of
   // swimmers evolved for distance alone (docs/model.md §10.1).
   double energy_budget = 10000.0;
+  // c_h, >= 0 (force per step): each motion step adds c_h times the sum
+  // over springs of |L - L0| to the energy (docs/model.md §10.1). 0: the
+  // energy is the work of changing rest lengths only.
+  double holding_cost = 0.0;
 };
 
 // Active guidance toward a chemical source (docs/model.md §10.2); off by

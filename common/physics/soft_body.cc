@@ -66,6 +66,14 @@ void SoftBody::SetActuation(std::span<const double> expand,
   work_pending_ = true;
 }
 
+double SoftBody::HeldActuation() const {
+  double held = 0.0;
+  for (size_t s = 0; s < rest_.size(); ++s) {
+    held += std::fabs(rest_[s] - rest0_[s]);
+  }
+  return held;
+}
+
 void SoftBody::AddSpringForces(const MotionState& state, Vec2* force) const {
   AddSprings<false>(state, force);
 }

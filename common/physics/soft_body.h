@@ -70,6 +70,10 @@ class SoftBody : public MotionStepper {
   // actuation adds 0 after its first step.
   double actuation_work() const { return work_; }
   void ResetActuationWork() { work_ = 0.0; }
+  // How far the actuation holds the rest lengths from rest: the sum over
+  // springs, in index order, of |L - L0| (radii). The holding cost of
+  // docs/model.md §10.1 charges it once per motion step.
+  double HeldActuation() const;
 
   // Total force on every node at `state`: springs, pressure, drag unless
   // `drag` is false, then contacts (model §7.10) on the native backend

@@ -167,6 +167,56 @@ TEST(EvaluatorTest, TheEnergyBudgetScalesDistanceDownBeyondIt) {
   EXPECT_EQ(m.distance(), *plain.distance);
 }
 
+// The holding cost (docs/model.md §10.1): E = W + c_h * sum over motion
+// steps of sum over springs |L - L0|, replayed from the rest lengths an
+// observer sees; the motion itself is untouched.
+TEST(EvaluatorTest, HoldingCostAddsTheHeldActuationToTheWork) {
+  struct Held : EvaluationObserver {
+    const ModelConfig* config = nullptr;
+    std::unique_ptr<SoftBody> soft;
+    std::vector<double> rest0;
+    double held = 0.0;
+    void OnBody(const Body& b, std::span<const double> e,
+                std::span<const double> c) override {
+      soft = std::make_unique<SoftBody>(b, config->physics);
+      soft->SetActuation(e, c);
+      for (const Spring& spring : b.springs)
+        rest0.push_back(spring.rest_length);
+    }
+    void OnMotionStep(MotionPhase phase, int step, const MotionState&,
+                      std::span<const double> e,
+                      std::span<const double> c) override {
+      if (phase != MotionPhase::kMotion || step == 0) return;
+      soft->SetActuation(e, c);
+      double step_held = 0.0;
+      for (size_t s = 0; s < rest0.size(); ++s) {
+        step_held += std::fabs(soft->rest_lengths()[s] - rest0[s]);
+      }
+      held += step_held;
+    }
+  };
+  ModelConfig config = ShortConfig();
+  const Genome genome = LoadGenome("seed-1198.json");
+  const EvaluationResult plain = Evaluate(genome, config);
+  ASSERT_EQ(plain.status, EvalStatus::kOk);
+  config.evaluation.holding_cost = 0.25;
+  Held held;
+  held.config = &config;
+  const EvaluationResult holding = Evaluate(genome, config, &held);
+  ASSERT_EQ(holding.status, EvalStatus::kOk);
+  EXPECT_GT(held.held, 0.0);
+  EXPECT_EQ(*holding.energy, *plain.energy + 0.25 * held.held);
+  EXPECT_EQ(*holding.distance, *plain.distance);
+  EXPECT_EQ(*holding.fitness, *plain.fitness);  // DISTANCE ignores E.
+  EXPECT_EQ(holding.state_hash, plain.state_hash);
+  // And the budget's fitness reads the new E.
+  config.evaluation.fitness = FitnessKind::kDistanceWithinEnergyBudget;
+  config.evaluation.energy_budget = *plain.energy;
+  const EvaluationResult budget = Evaluate(genome, config);
+  EXPECT_EQ(*budget.fitness,
+            *plain.distance * (*plain.energy / *holding.energy));
+}
+
 TEST(EvaluatorTest, RunawayMotionIsANumericalFailure) {
   // Springs far beyond the explicit stability limit blow up; the evaluation
   // must say so instead of returning a number.
