@@ -316,9 +316,29 @@ TEST(EnergyConfigTest, IsTheReplicationsDn1RunWithTheEnergyBudget) {
   expected->model.physics.drag_tangential = 0.005;
   expected->model.physics.integrator = Integrator::kRk4;
   expected->model.physics.substeps = 1;
+  expected->model.physics.contact_rule = ContactRule::kNone;  // Model v2.
   expected->evolution.generations = 150;
   expected->model.evaluation.fitness = FitnessKind::kDistanceWithinEnergyBudget;
   expected->model.evaluation.energy_budget = 10000.0;
+  EXPECT_EQ(Text(*settings), Text(*expected));
+  // The model its second-edition runs ran, as their kept best records it.
+  Result<ModelConfig> ran = ReadConfigFile(
+      ConfigsDir() +
+      "/../docs/results/bests/energy-dn1-seed1-132270.config.txtpb");
+  ASSERT_TRUE(ran.ok()) << ran.status().ToString();
+  EXPECT_EQ(SerializeProto(ConfigToProto(settings->model), ProtoFormat::kText),
+            SerializeProto(ConfigToProto(*ran), ProtoFormat::kText));
+}
+
+// The holding arm differs from the energy runs by the holding cost only.
+TEST(EnergyConfigTest, TheHoldingArmIsTheEnergyRunsWithAHoldingCost) {
+  Result<RunSettings> settings =
+      ReadRunConfigFile(ConfigsDir() + "/energy-holding.txtpb");
+  ASSERT_TRUE(settings.ok()) << settings.status().ToString();
+  Result<RunSettings> expected =
+      ReadRunConfigFile(ConfigsDir() + "/energy.txtpb");
+  ASSERT_TRUE(expected.ok());
+  expected->model.evaluation.holding_cost = 0.05;
   EXPECT_EQ(Text(*settings), Text(*expected));
 }
 
