@@ -82,7 +82,7 @@ struct Chemical {
 };
 
 struct MotionOutcome {
-  int64_t steps = 0;    // Motion steps run.
+  int64_t steps = 0;    // Lead and motion steps run.
   std::string problem;  // Why it failed; "" when it ran to the end.
   // The deepest unjoined overlap at the end of any step (model §8.6).
   double max_overlap = 0.0;
@@ -114,24 +114,49 @@ void ObserveSignals(int step, const GrnBatchT<S>& grn,
   observer->OnSignals(step, nodes, cells, signal);
 }
 
-// The motion phase from `*state` (model §7.7, §8.1), with the CHEMICAL
-// input recomputed before every network step when `chemical` is not null.
+// `lead` network steps with the body held still (docs/model.md §10.2),
+// their signals at history steps `history_base` on, the CHEMICAL input
+// sensed before each when `chemical` is not null.
+template <typename S>
+void RunLead(int lead, int history_base, GrnBatchT<S>& grn,
+             MorphogenFieldT<S>& field, const MotionState& state,
+             const Chemical* chemical) {
+  std::vector<double> sensed;
+  for (int step = 0; step < lead; ++step) {
+    if (field.morphogens() > 0) {
+      field.Record(history_base + step, grn);
+      field.Apply(history_base + step, &grn);
+    }
+    if (chemical) {
+      SenseChemical(chemical->source, chemical->decay_length,
+                    chemical->skin_cells, state.position, &sensed);
+      grn.SetChemical(sensed);
+    }
+    grn.Step();
+  }
+}
+
+// The motion phase from `*state` (model §7.7, §8.1), after `lead` network
+// steps with the body held, with the CHEMICAL input recomputed before every
+// network step when `chemical` is not null.
 template <typename S>
 MotionOutcome RunMotion(const ModelConfig& config, GrnBatchT<S>& grn,
                         MorphogenFieldT<S>& field, SoftBody& soft_body,
                         MotionStepper& stepper, MotionState* state,
-                        const Chemical* chemical,
+                        const Chemical* chemical, int lead,
                         EvaluationObserver* observer) {
   const EvaluationParams& ev = config.evaluation;
   const int cells = grn.cells();
   const bool signalling = field.morphogens() > 0;
+  RunLead(lead, config.development.steps, grn, field, *state, chemical);
   std::vector<double> expand(cells), contract(cells), sensed;
   ReadActuation(grn, &expand, &contract);
   if (observer) {
     observer->OnMotionStep(MotionPhase::kMotion, 0, *state, expand, contract);
   }
   MotionOutcome outcome;
-  const int history_base = config.development.steps;
+  outcome.steps = lead;
+  const int history_base = config.development.steps + lead;
   for (int step = 1; step <= ev.motion_steps; ++step) {
     if (signalling) {
       const int signal_step = history_base + step - 1;
@@ -414,7 +439,7 @@ class Pipeline {
     GrnBatchT<S>& grn = development_.grn();
     const MotionOutcome motion =
         RunMotion(config_, grn, development_.field(), *soft_body_, stepper(),
-                  &state_, nullptr, observer_);
+                  &state_, nullptr, 0, observer_);
     progress_.steps += motion.steps;
     if (!motion.problem.empty()) {
       return Failed(progress_, EvalStatus::kNumericalFailure, motion.problem);
@@ -457,9 +482,9 @@ class Pipeline {
     // A knock-out of the chemical (docs/analysis.md): no sensing, so every
     // cell's CHEMICAL reads the 0 it read during development.
     const bool sensing = options_.knockout.kind != Knockout::Kind::kChemical;
-    out->motion =
-        RunMotion(config_, grn, field, trial_body, stepper, &trial_state,
-                  sensing ? &chemical : nullptr, watcher);
+    out->motion = RunMotion(config_, grn, field, trial_body, stepper,
+                            &trial_state, sensing ? &chemical : nullptr,
+                            config_.guidance.lead_steps, watcher);
     if (!out->motion.problem.empty()) return;
     const Vec2 end = CentreOfMass(trial_state);
     out->distance = Length(end - start);

@@ -51,6 +51,8 @@ constexpr ParamRow<G> kGuidance[] = {
      "D, the source's distance from the starting centre of mass (radii)"},
     {"decay_length", &G::decay_length, ParamRange::Positive(),
      "lambda_c: a skin cell reads exp(-d / decay_length) (radii)"},
+    {"lead_steps", &G::lead_steps, ParamRange::Closed(0, 100000),
+     "network steps with the chemical on before motion, the body held"},
 };
 
 Status EvaluationParamsFromProto(const v1::EvaluationConfig& m,

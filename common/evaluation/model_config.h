@@ -49,6 +49,9 @@ struct GuidanceParams {
   int trials = 4;                 // K, in [1, kMaxGuidanceTrials].
   double source_distance = 30.0;  // D (radii), > 0.
   double decay_length = 10.0;     // lambda_c (radii), > 0.
+  // Network steps with the chemical on before each trial's motion, the
+  // body held still (docs/model.md §10.2), in [0, 100000].
+  int lead_steps = 0;
 };
 
 struct ModelConfig {

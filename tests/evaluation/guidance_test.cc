@@ -192,6 +192,50 @@ TEST(GuidanceTest, NoChemicalPathSwimsTheSameInEveryTrial) {
   EXPECT_EQ(r.steps, base.steps + 3 * config.evaluation.motion_steps);
 }
 
+// The lead (guidance.lead_steps): the network runs with the chemical on
+// before motion, the body held. A swimmer that cannot sense still swims the
+// same in every trial, now from a network `lead` steps on; the steps count
+// the lead of every trial; a sensing swimmer's lead depends on its source.
+TEST(GuidanceTest, TheLeadRunsTheNetworkBeforeMotionWithTheBodyHeld) {
+  ModelConfig config = GuidanceConfig();
+  const EvaluationResult base = Evaluate(DeafSwimmer(), config);
+  ASSERT_EQ(base.status, EvalStatus::kOk) << base.reason;
+  config.guidance.lead_steps = 50;
+  const EvaluationResult led = Evaluate(DeafSwimmer(), config);
+  ASSERT_EQ(led.status, EvalStatus::kOk) << led.reason;
+  EXPECT_EQ(led.steps, base.steps + 4 * 50);
+  EXPECT_NE(led.state_hash, base.state_hash);
+  ASSERT_EQ(led.source_distances.size(), 4u);
+  // Deaf: each trial is one motion seen from a source turned around the
+  // start, so the distance swum is the same in every trial.
+  Watcher first;
+  EvaluateOptions options;
+  options.observed_trial = 0;
+  ASSERT_EQ(Evaluate(DeafSwimmer(), config, &first, options).status,
+            EvalStatus::kOk);
+  // The body was held: motion starts from the equilibrated start, which
+  // the lead leaves where it was without one.
+  Watcher unled;
+  config.guidance.lead_steps = 0;
+  ASSERT_EQ(Evaluate(DeafSwimmer(), config, &unled, options).status,
+            EvalStatus::kOk);
+  EXPECT_EQ(first.start.x, unled.start.x);
+  EXPECT_EQ(first.start.y, unled.start.y);
+  EXPECT_NEAR(*led.distance, Length(first.end - first.start), 1e-12);
+  // A sensing swimmer: with the chemical knocked out its lead hears
+  // nothing, and the result changes.
+  config.guidance.lead_steps = 50;
+  const EvaluationResult sensing = Evaluate(SensingSwimmer(), config);
+  ASSERT_EQ(sensing.status, EvalStatus::kOk) << sensing.reason;
+  EvaluateOptions deaf;
+  deaf.knockout.kind = Knockout::Kind::kChemical;
+  const EvaluationResult unheard =
+      Evaluate(SensingSwimmer(), config, nullptr, deaf);
+  ASSERT_EQ(unheard.status, EvalStatus::kOk) << unheard.reason;
+  EXPECT_EQ(unheard.steps, sensing.steps);
+  EXPECT_NE(unheard.state_hash, sensing.state_hash);
+}
+
 TEST(GuidanceTest, AnObserverMaySeeEveryTrialInTurn) {
   EvaluateOptions options;
   options.observed_trial = EvaluateOptions::kAllTrials;
