@@ -303,6 +303,19 @@ TEST(GuidanceConfigTest, ReadsAsAGuidanceRun) {
   EXPECT_EQ(settings->evolution.mutation.input_channels, kInputChannels);
 }
 
+// The guidance arm of the third replication differs from the guidance runs
+// by the lead only.
+TEST(GuidanceConfigTest, TheLeadArmIsTheGuidanceRunsWithALead) {
+  Result<RunSettings> settings =
+      ReadRunConfigFile(ConfigsDir() + "/guidance-lead.txtpb");
+  ASSERT_TRUE(settings.ok()) << settings.status().ToString();
+  Result<RunSettings> expected =
+      ReadRunConfigFile(ConfigsDir() + "/guidance.txtpb");
+  ASSERT_TRUE(expected.ok());
+  expected->model.guidance.lead_steps = 200;
+  EXPECT_EQ(Text(*settings), Text(*expected));
+}
+
 TEST(EnergyConfigTest, IsTheReplicationsDn1RunWithTheEnergyBudget) {
   Result<RunSettings> settings =
       ReadRunConfigFile(ConfigsDir() + "/energy.txtpb");
