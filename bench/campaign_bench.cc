@@ -67,7 +67,7 @@
 #include "bench/null_scoring.h"
 #include "bench/timing.h"
 #include "bench/worker_processes.h"
-#include "cli/options.h"
+#include "common/command_line/command_line.h"
 #include "master/campaign/shared_evaluators.h"
 #include "master/dispatch/dispatcher.h"
 #include "master/lineage/queries.h"
@@ -505,8 +505,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--verbose", o.verbose,
                "The masters' and dispatchers' log on stderr");
-  if (const std::optional<int> code = animat::cli::ParseCommandLine(
-          app, argc, argv, "animat-campaign-bench")) {
+  if (const std::optional<int> code =
+          animat::ParseCommandLine(app, argc, argv, "animat-campaign-bench")) {
     return *code;
   }
   if (o.slots % o.runs != 0 || o.slots / o.runs > 4096) {

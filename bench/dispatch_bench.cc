@@ -41,7 +41,7 @@
 
 #include "bench/timing.h"
 #include "bench/worker_processes.h"
-#include "cli/options.h"
+#include "common/command_line/command_line.h"
 #include "common/evaluation/model_config.h"
 #include "common/genome/genome_proto.h"
 #include "common/io/proto_file.h"
@@ -362,8 +362,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--verbose", options.verbose,
                "The dispatcher's log on stderr, and more figures");
-  if (const std::optional<int> code = animat::cli::ParseCommandLine(
-          app, argc, argv, "animat-dispatch-bench")) {
+  if (const std::optional<int> code =
+          animat::ParseCommandLine(app, argc, argv, "animat-dispatch-bench")) {
     return *code;
   }
   // Every file named is checked before any part runs.

@@ -51,7 +51,7 @@
 #include "bench/null_scoring.h"
 #include "bench/timing.h"
 #include "bench/worker_processes.h"
-#include "cli/options.h"
+#include "common/command_line/command_line.h"
 #include "common/protocol/endpoint.h"
 #include "master/dispatch/dispatcher.h"
 #include "master/lineage/queries.h"
@@ -355,8 +355,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--verbose", options.verbose,
                "The master's and dispatcher's log on stderr");
-  if (const std::optional<int> code = animat::cli::ParseCommandLine(
-          app, argc, argv, "animat-master-bench")) {
+  if (const std::optional<int> code =
+          animat::ParseCommandLine(app, argc, argv, "animat-master-bench")) {
     return *code;
   }
   if (const animat::Status status =

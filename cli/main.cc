@@ -5,7 +5,7 @@
 #include <string>
 
 #include "cli/commands.h"
-#include "cli/options.h"
+#include "common/command_line/command_line.h"
 #include "common/kernels/isa.h"
 #include "common/protocol/protocol.h"
 
@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
   commands["config"] = animat::cli::AddConfigCommand(app);
   commands["signals"] = animat::cli::AddSignalsCommand(app);
   if (const std::optional<int> code =
-          animat::cli::ParseCommandLine(app, argc, argv, "animat")) {
+          animat::ParseCommandLine(app, argc, argv, "animat")) {
     return *code;
   }
   // A mistyped ANIMAT_ISA is refused, not silently replaced.

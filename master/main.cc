@@ -19,7 +19,7 @@
 #include <google/protobuf/stubs/logging.h>
 #include <CLI/CLI.hpp>
 
-#include "cli/options.h"
+#include "common/command_line/command_line.h"
 #include "common/protocol/endpoint.h"
 #include "master/campaign/campaign_session.h"
 #include "master/progress.h"
@@ -145,7 +145,7 @@ int main(int argc, char** argv) {
   CLI::App app{"animat-master: evolves animats with workers over ZeroMQ"};
   AddOptions(app, o, resume, campaign);
   if (const std::optional<int> code =
-          animat::cli::ParseCommandLine(app, argc, argv, "animat-master")) {
+          animat::ParseCommandLine(app, argc, argv, "animat-master")) {
     return *code;
   }
   google::protobuf::SetLogHandler(nullptr);

@@ -20,7 +20,7 @@
 #include <google/protobuf/stubs/logging.h>
 #include <CLI/CLI.hpp>
 
-#include "cli/options.h"
+#include "common/command_line/command_line.h"
 #include "common/kernels/isa.h"
 #include "common/protocol/endpoint.h"
 #include "common/security/curve_keys.h"
@@ -116,7 +116,7 @@ int EvaluateOneMain(int argc, char** argv) {
   app.add_option("--result", result, "Where the WorkResult goes (binary)")
       ->required();
   if (const std::optional<int> code =
-          animat::cli::ParseCommandLine(app, argc, argv, "animat-worker")) {
+          animat::ParseCommandLine(app, argc, argv, "animat-worker")) {
     return *code;
   }
   return animat::EvaluateOne(
@@ -136,7 +136,7 @@ int main(int argc, char** argv) {
   KeyFiles keys;
   AddOptions(app, options, keys);
   if (const std::optional<int> code =
-          animat::cli::ParseCommandLine(app, argc, argv, "animat-worker")) {
+          animat::ParseCommandLine(app, argc, argv, "animat-worker")) {
     return *code;
   }
   // A mistyped ANIMAT_ISA is refused, not silently replaced.

@@ -25,7 +25,7 @@
 
 #include "bench/accuracy/experiment.h"
 #include "bench/accuracy/report.h"
-#include "cli/options.h"
+#include "common/command_line/command_line.h"
 #include "common/io/proto_file.h"
 
 namespace {
@@ -121,7 +121,7 @@ int main(int argc, char** argv) {
                  "all)")
       ->delimiter(',');
   if (const std::optional<int> code =
-          animat::cli::ParseCommandLine(app, argc, argv, "animat-accuracy")) {
+          animat::ParseCommandLine(app, argc, argv, "animat-accuracy")) {
     return *code;
   }
   return Run(o);

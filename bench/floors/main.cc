@@ -24,8 +24,8 @@
 #include <vector>
 
 #include "bench/floors/primitives.h"
-#include "cli/options.h"
 #include "common/body/body.h"
+#include "common/command_line/command_line.h"
 #include "common/development/development.h"
 #include "common/evaluation/evaluator.h"
 #include "common/genome/genome_proto.h"
@@ -330,7 +330,7 @@ int main(int argc, char** argv) {
   app.add_option("--genome", genome, "The workload's genome")
       ->capture_default_str();
   if (const std::optional<int> code =
-          animat::cli::ParseCommandLine(app, argc, argv, "animat-floors")) {
+          animat::ParseCommandLine(app, argc, argv, "animat-floors")) {
     return *code;
   }
   return animat::floors::Run(genome);

@@ -2,15 +2,15 @@
 // animat-master, animat-worker and the developer tools in bench/): one
 // convention for exit codes and for the option values CLI11 lets through.
 // Thread-safe as CLI11 is: one thread per CLI::App.
-#ifndef ANIMAT_CLI_OPTIONS_H_
-#define ANIMAT_CLI_OPTIONS_H_
+#ifndef ANIMAT_COMMON_COMMAND_LINE_COMMAND_LINE_H_
+#define ANIMAT_COMMON_COMMAND_LINE_COMMAND_LINE_H_
 
 #include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
-namespace animat::cli {
+namespace animat {
 
 // The first option value of `app`'s parse (its parsed subcommands
 // included) that no program takes: an empty value, a whole number beyond
@@ -28,6 +28,6 @@ std::string MalformedOptionValue(const CLI::App& app);
 std::optional<int> ParseCommandLine(CLI::App& app, int argc, char** argv,
                                     const std::string& program);
 
-}  // namespace animat::cli
+}  // namespace animat
 
-#endif  // ANIMAT_CLI_OPTIONS_H_
+#endif  // ANIMAT_COMMON_COMMAND_LINE_COMMAND_LINE_H_

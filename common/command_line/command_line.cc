@@ -1,4 +1,4 @@
-#include "cli/options.h"
+#include "common/command_line/command_line.h"
 
 #include <cerrno>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include "common/base/text.h"
 
-namespace animat::cli {
+namespace animat {
 namespace {
 
 // Why `value` of an option of type `type` (CLI11's name: INT, UINT, FLOAT,
@@ -72,4 +72,4 @@ std::optional<int> ParseCommandLine(CLI::App& app, int argc, char** argv,
   return std::nullopt;
 }
 
-}  // namespace animat::cli
+}  // namespace animat
