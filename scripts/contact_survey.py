@@ -12,7 +12,8 @@ Two surveys, each a table (Markdown) and the numbers (JSON):
   stiffness
           the accuracy report's animat set (bench/data/accuracy/, each with
           its model file) under the default configuration with contacts
-          UNJOINED at each contact stiffness k_c given: the deepest
+          UNJOINED at each contact stiffness k_c given (and each contact
+          damping gamma_c, when --damping is given): the deepest
           unjoined overlap of each animat, and its largest over the set.
 
 Every evaluation is `animat simulate --json` of this build; the script
@@ -21,6 +22,8 @@ only writes configurations and tabulates. Standard library only.
   scripts/contact_survey.py bests --out docs/results/contacts
   scripts/contact_survey.py stiffness --stiffness 50,100,200,400 \\
       --extra-dir DIR --out docs/accuracy/contacts
+  scripts/contact_survey.py stiffness --stiffness 200,800 --damping 0.5,5 \\
+      --physics 'substeps: 4' --skip-none --out /tmp/grid
 """
 
 import argparse
@@ -142,48 +145,76 @@ def animat_set(extra_dirs):
     return out
 
 
+def grid(args):
+    """The (k_c, gamma_c) pairs of --stiffness and --damping, in order."""
+    ks = [float(v) for v in args.stiffness.split(",")]
+    gs = [float(v) for v in args.damping.split(",")] if args.damping \
+        else [None]
+    return [(k, g) for k in ks for g in gs]
+
+
+def setting_name(k, g):
+    return f"{k:g}" if g is None else f"{k:g}/{g:g}"
+
+
+def extra_fields(text):
+    """`--physics 'a: 1 b: X'` as an ordered dict of fields."""
+    pairs = re.findall(r"(\w+)\s*:\s*(\S+)", text or "")
+    return dict(pairs)
+
+
 def stiffness(args):
-    values = [float(v) for v in args.stiffness.split(",")]
+    settings = grid(args)
     animats = animat_set(args.extra_dir)
+    extra = extra_fields(args.physics)
     tasks = []
     for name, genome, model in animats:
-        for k in values:
+        for k, g in settings:
             fields = {"contact_rule": "UNJOINED", "contact_stiffness": k}
-            tasks.append(((name, k), genome,
+            if g is not None:
+                fields["contact_damping"] = g
+            fields.update(extra)
+            tasks.append(((name, setting_name(k, g)), genome,
                           physics_override(model, fields)))
-        tasks.append(((name, "none"), genome,
-                      physics_override(model, {"contact_rule": "NONE"})))
+        if not args.skip_none:
+            fields = dict(extra, contact_rule="NONE")
+            tasks.append(((name, "none"), genome,
+                          physics_override(model, fields)))
     results = run_all(args.animat, args.jobs, tasks)
     rows = []
     for name, _, _ in animats:
-        row = {"animat": name,
-               "none": results[(name, "none")].get("max_overlap")}
-        row["fitness_none"] = results[(name, "none")].get("fitness")
-        for k in values:
-            r = results[(name, k)]
-            row[str(k)] = {"status": r["status"],
-                           "max_overlap": r.get("max_overlap"),
-                           "fitness": r.get("fitness")}
+        row = {"animat": name}
+        if not args.skip_none:
+            row["none"] = results[(name, "none")].get("max_overlap")
+            row["fitness_none"] = results[(name, "none")].get("fitness")
+        for k, g in settings:
+            r = results[(name, setting_name(k, g))]
+            row[setting_name(k, g)] = {"status": r["status"],
+                                       "max_overlap": r.get("max_overlap"),
+                                       "fitness": r.get("fitness")}
         rows.append(row)
-    header = ("| k_c | deepest overlap over the set | animat | 90th"
-              " percentile | animats over 10% | failed |")
+    column = "k_c" if args.damping is None else "k_c / gamma_c"
+    header = (f"| {column} | deepest overlap over the set | animat | 90th"
+              f" percentile | animats over {percent(args.bound)} | failed |")
     lines = [header, "|---:|---:|---|---:|---:|---:|"]
-    for k in [None] + values:
+    keys = ([] if args.skip_none else [None]) + \
+        [setting_name(k, g) for k, g in settings]
+    for key in keys:
         overlaps = []
         failed = 0
         for row in rows:
-            if k is None:
+            if key is None:
                 value = row["none"]
             else:
-                value = row[str(k)]["max_overlap"]
-                failed += row[str(k)]["status"] != "ok"
+                value = row[key]["max_overlap"]
+                failed += row[key]["status"] != "ok"
             if value is not None:
                 overlaps.append((value, row["animat"]))
         overlaps.sort()
         worst = overlaps[-1] if overlaps else (None, "—")
         p90 = overlaps[int(0.9 * (len(overlaps) - 1))][0] if overlaps else None
-        over = sum(1 for v, _ in overlaps if v > 0.10)
-        label = "NONE" if k is None else f"{k:g}"
+        over = sum(1 for v, _ in overlaps if v > args.bound)
+        label = "NONE" if key is None else key
         lines.append(f"| {label} | {percent(worst[0])} | {worst[1]} |"
                      f" {percent(p90)} | {over} of {len(overlaps)} |"
                      f" {failed} |")
@@ -198,6 +229,16 @@ def main():
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
     parser.add_argument("--stiffness", default="50,100,200,400",
                         help="contact stiffnesses k_c, comma-separated")
+    parser.add_argument("--damping", default=None,
+                        help="contact dampings gamma_c, comma-separated "
+                        "(default: the configuration's)")
+    parser.add_argument("--physics", default="",
+                        help="more physics fields for every setting, e.g. "
+                        "'integrator: RK4 substeps: 16'")
+    parser.add_argument("--bound", type=float, default=0.10,
+                        help="the overlap counted as too deep (default 0.10)")
+    parser.add_argument("--skip-none", action="store_true",
+                        help="leave out the contact rule NONE column")
     parser.add_argument("--extra-dir", action="append", default=[],
                         help="more genomes laid out as bench/data/accuracy")
     parser.add_argument("--out", required=True,

@@ -11,10 +11,12 @@ cells overlap in every store.
       [--pool v3=v3-dn0.1+v3-dn1+v3-dn10] [--top 5] [--overlap-bound 0.1] \\
       [--out docs/results/strategies]
 
-- A condition is a name and a glob of lineage stores (one run each). The
-  phenotypes are `animat cluster --top N`'s: each store's last completed
-  generation, ok members by fitness, each state hash once (equal hashes
-  are identical simulations). Each is labelled by `animat analyze`'s
+- A condition is a name and a glob of lineage stores (one run each), or of
+  run records (folders written by scripts/run_record.py, for runs whose
+  store is not kept). The phenotypes are `animat cluster --top N`'s: each
+  store's last completed generation, ok members by fitness, each state
+  hash once (equal hashes are identical simulations); a record holds the
+  same phenotypes' genomes and models. Each is labelled by `animat analyze`'s
   classifier, which also gives its period and amplitude.
 - A pool is a condition made of others (e.g. every drag of one model).
 - A comparison names two or more conditions. For each label, Fisher's
@@ -71,8 +73,18 @@ def parse_pairs(values, flag):
 
 
 def store_overlap(path, bound):
-    """The latest run of store PATH: its generations, best fitness and the
-    deepest unjoined overlap of its ok individuals."""
+    """The latest run of store (or record) PATH: its generations, best
+    fitness and the deepest unjoined overlap of its ok individuals."""
+    if is_record(path):
+        record = read_record(path)
+        o = record["overlap"]
+        if o["bound"] != bound:
+            sys.exit(f"strategy_report.py: {path} counts overlaps above "
+                     f"{o['bound']:g}, not {bound:g}")
+        return {"generations": record["generations"],
+                "best_fitness": record["statistics"][-1]["best_fitness"],
+                "ok": o["ok"], "deepest_overlap": o["deepest"],
+                "above_bound": o["above_bound"]}
     db = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
     try:
         run_id, = db.execute(
@@ -102,29 +114,93 @@ def run_tool(cmd):
     return result.stdout
 
 
-def phenotypes(animat, stores, top):
-    """The top distinct phenotypes of each store (`animat cluster`), each
-    analysed (`animat analyze`). Returns (phenotypes, problems)."""
-    by_stem = {os.path.basename(s)[:-3]: s for s in stores}
-    with tempfile.TemporaryDirectory() as tmp:
-        out = os.path.join(tmp, "clusters.json")
-        cmd = [animat, "cluster", "--top", str(top), "-o", out]
+def is_record(source):
+    """True for a run record's folder (scripts/run_record.py), false for a
+    lineage store."""
+    return os.path.isfile(os.path.join(source, "record.json"))
+
+
+def read_record(folder):
+    with open(os.path.join(folder, "record.json")) as f:
+        return json.load(f)
+
+
+def stem_of(source):
+    """The run's name: a store's file name without .db, a record's run."""
+    if is_record(source):
+        return read_record(source)["run"]
+    return os.path.basename(source)[:-3]
+
+
+def record_files(folder, genome):
+    stem = os.path.join(folder, genome)
+    return stem + ".json", stem + ".config.txtpb"
+
+
+def cluster(animat, sources, top):
+    """`animat cluster`'s animats for the stores and records given: each
+    (run, individual id, the analyse command's source arguments, entry)."""
+    stores = [s for s in sources if not is_record(s)]
+    records = [s for s in sources if is_record(s)]
+    calls = []
+    if stores:
+        cmd = ["--top", str(top)]
         for s in stores:
             cmd += ["--db", s]
-        if run_tool(cmd) is None:
-            return [], 1
-        with open(out) as f:
-            clustered = json.load(f)
+        calls.append(cmd)
+    files = {}
+    if records:
+        cmd = []
+        for folder in records:
+            record = read_record(folder)
+            if record["top"] < top:
+                print(f"{folder}: the record holds the top "
+                      f"{record['top']} phenotypes, not {top}",
+                      file=sys.stderr)
+                return None
+            for p in record["phenotypes"][:top]:
+                genome, config = record_files(folder, p["genome"])
+                files[p["genome"]] = (record["run"], p["id"], genome, config)
+                cmd += ["--genome", genome, "--config", config]
+        calls.append(cmd)
+    by_stem = {os.path.basename(s)[:-3]: s for s in stores}
+    found = []
+    for call in calls:
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "clusters.json")
+            if run_tool([animat, "cluster", "-o", out] + call) is None:
+                return None
+            with open(out) as f:
+                clustered = json.load(f)
+        for a in clustered.get("animat", []):
+            m = PHENOTYPE.match(a["name"])
+            if m and m.group(1) in by_stem:
+                found.append((m.group(1), int(m.group(2)),
+                              ["--db", by_stem[m.group(1)], "--individual",
+                               m.group(2)], a))
+            elif a["name"] in files:
+                run, ident, genome, config = files[a["name"]]
+                found.append((run, ident, ["--genome", genome, "--config",
+                                           config], a))
+            else:
+                found.append((None, None, None, a))
+    return found
+
+
+def phenotypes(animat, sources, top):
+    """The top distinct phenotypes of each store or record (`animat
+    cluster`), each analysed (`animat analyze`). Returns (phenotypes,
+    problems)."""
+    clustered = cluster(animat, sources, top)
+    if clustered is None:
+        return [], 1
     found, problems = [], 0
-    for a in clustered.get("animat", []):
-        m = PHENOTYPE.match(a["name"])
-        if not m or m.group(1) not in by_stem:
+    for run, ident, source, a in clustered:
+        if run is None:
             print(f"unexpected animat name {a['name']!r}", file=sys.stderr)
             problems += 1
             continue
-        store, ident = by_stem[m.group(1)], int(m.group(2))
-        text = run_tool([animat, "analyze", "--db", store, "--individual",
-                         str(ident), "-o", "-"])
+        text = run_tool([animat, "analyze"] + source + ["-o", "-"])
         if text is None:
             problems += 1
             continue
@@ -139,7 +215,7 @@ def phenotypes(animat, stores, top):
         for key in ("period_steps", "amplitude_mean"):
             camel = re.sub(r"_([a-z])", lambda x: x.group(1).upper(), key)
             values[key] = analysis.get(key, analysis.get(camel))
-        found.append({"run": m.group(1), "id": ident, "label": label,
+        found.append({"run": run, "id": ident, "label": label,
                       "margin": a.get("margin", 0.0),
                       "stable": bool(a.get("stable", False)),
                       "fitness": a.get("fitness"), "features": values})
@@ -275,7 +351,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--animat", default="build/bin/animat")
     parser.add_argument("--condition", action="append", default=[],
-                        help="NAME=GLOB of lineage stores")
+                        help="NAME=GLOB of lineage stores or run records")
     parser.add_argument("--pool", action="append", default=[],
                         help="NAME=A+B+... of conditions pooled")
     parser.add_argument("--compare", action="append", default=[],
@@ -296,7 +372,7 @@ def main():
         problems += bad
         runs = []
         for s in stores:
-            stem = os.path.basename(s)[:-3]
+            stem = stem_of(s)
             mine = [p for p in found if p["run"] == stem]
             runs.append({"run": stem, "store": s, "phenotypes": mine,
                          "best_label": mine[0]["label"] if mine else None,

@@ -6,7 +6,9 @@ replay unchanged (docs/model.md §7.10, §12).
 
 The stored fitness of each best is the one its report recorded from the
 run's lineage store: docs/results/replication.json, energy.json and
-guidance.json.
+guidance.json. Every run record in docs/results/runs/ (scripts/
+run_record.py) holds its best and top phenotypes with the fitness and
+final-state hash its store recorded: each must give both again.
 
   bests_replay_test.py ANIMAT   (exit 0 when every best replays)
 """
@@ -34,13 +36,33 @@ def stored_bests():
     return out
 
 
+def recorded_animats():
+    """(genome path, stored fitness, stored state hash) of the best and the
+    phenotypes of every run record."""
+    folder = os.path.join(ROOT, "docs", "results", "runs")
+    out = []
+    if not os.path.isdir(folder):
+        return out
+    for run in sorted(os.listdir(folder)):
+        path = os.path.join(folder, run, "record.json")
+        if not os.path.isfile(path):
+            continue
+        with open(path) as f:
+            record = json.load(f)
+        for entry in [record["best"]] + record["phenotypes"]:
+            genome = os.path.join("docs", "results", "runs", run,
+                                  entry["genome"] + ".json")
+            out.append((genome, entry["fitness"], entry["state_hash"]))
+    return out
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit("usage: bests_replay_test.py ANIMAT")
     animat = sys.argv[1]
-    bests = stored_bests()
+    bests = [(g, f, None) for g, f in stored_bests()] + recorded_animats()
     failures = []
-    for genome, fitness in bests:
+    for genome, fitness, state_hash in bests:
         path = os.path.join(ROOT, genome)
         config = path[:-len(".json")] + ".config.txtpb"
         run = subprocess.run(
@@ -50,10 +72,15 @@ def main():
             failures.append(f"{genome}: exit {run.returncode}: "
                             f"{run.stderr.strip()}")
             continue
-        again = json.loads(run.stdout).get("fitness")
+        result = json.loads(run.stdout)
+        again = result.get("fitness")
         if again is None or float.hex(again) != float.hex(fitness):
             failures.append(f"{genome}: stored fitness {fitness!r}, "
                             f"simulated again {again!r}")
+        elif state_hash is not None and result.get("state_hash") != \
+                state_hash:
+            failures.append(f"{genome}: stored state hash {state_hash}, "
+                            f"simulated again {result.get('state_hash')}")
     for failure in failures:
         print(failure, file=sys.stderr)
     print(f"{len(bests) - len(failures)} of {len(bests)} bests replay to "
