@@ -308,7 +308,7 @@ void BM_PhysicsStep(benchmark::State& state) {
 }
 BENCHMARK(BM_PhysicsStep)->DenseRange(0, 4)->Unit(benchmark::kMicrosecond);
 
-// The default physics step (model §7: velocity Verlet ×2, contacts between
+// The default physics step (model §7: velocity Verlet ×4, contacts between
 // unjoined cells), with the deepest unjoined overlap measured after it as
 // every evaluation does (model §8.6).
 void BM_PhysicsStepDefault(benchmark::State& state) {

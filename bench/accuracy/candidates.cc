@@ -85,7 +85,7 @@ Candidate ReferenceCandidate() {
 }
 
 Candidate DefaultCandidate() {
-  return Make("VELOCITY_VERLET", 2, "EXPLICIT", "FLOAT", "NATIVE");
+  return Make("VELOCITY_VERLET", 4, "EXPLICIT", "FLOAT", "NATIVE");
 }
 
 std::vector<Candidate> CandidateSet() {
@@ -99,6 +99,11 @@ std::vector<Candidate> CandidateSet() {
         }
       }
     }
+  }
+  // Velocity Verlet with three sub-steps, explicit drag: between 2 and 4,
+  // where stiff contacts put the cheapest that meets the rule.
+  for (const char* precision : {"DOUBLE", "FLOAT"}) {
+    set.push_back(Make("VELOCITY_VERLET", 3, "EXPLICIT", precision, "NATIVE"));
   }
   // The third-order schemes with explicit drag only: the stable drag
   // update's splitting is at most second order (docs/accuracy.md).

@@ -50,14 +50,14 @@ struct PhysicsParams {
   // model §7.6's accuracy rule with contacts (model v3; docs/accuracy.md,
   // docs/model.md §11.4).
   Integrator integrator = Integrator::kVelocityVerlet;
-  int substeps = 2;  // Physics sub-steps per simulation step.
+  int substeps = 4;  // Physics sub-steps per simulation step.
   DragUpdate drag_update = DragUpdate::kExplicit;
   PhysicsBackend backend = PhysicsBackend::kNative;
   ContactRule contact_rule = ContactRule::kUnjoined;
   // k_c (force per radius of overlap) and gamma_c (force per unit approach
   // speed) of the native backend's contacts; Bullet's world uses its own
   // contact solver.
-  double contact_stiffness = 200.0;  // Chosen by measurement, §7.10.
+  double contact_stiffness = 1500.0;  // Chosen by measurement, §7.10.
   double contact_damping = 0.5;
 };
 

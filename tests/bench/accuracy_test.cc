@@ -204,14 +204,14 @@ TEST(SvgTest, EmptyPlotIsStillWellFormed) {
 TEST(CandidatesTest, SetCoversEveryCombinationWithUniqueLabels) {
   const std::vector<Candidate> set = CandidateSet();
   // Euler, Verlet, RK4 x {1, 2, 4} x {explicit, stable} x {double, float};
-  // SSPRK3, Ralston's x {1, 2} x {double, float}; Bullet x {1, 2} x
-  // {double, float}.
-  EXPECT_EQ(set.size(), 3u * 3 * 2 * 2 + 2 * 2 * 2 + 4);
+  // Verlet x 3, explicit, x {double, float}; SSPRK3, Ralston's x {1, 2} x
+  // {double, float}; Bullet x {1, 2} x {double, float}.
+  EXPECT_EQ(set.size(), 3u * 3 * 2 * 2 + 2 + 2 * 2 * 2 + 4);
   std::set<std::string> labels;
   for (const Candidate& c : set) labels.insert(c.Label());
   EXPECT_EQ(labels.size(), set.size());
   EXPECT_EQ(ReferenceCandidate().Label(), "R16");
-  EXPECT_EQ(DefaultCandidate().Label(), "V2f");
+  EXPECT_EQ(DefaultCandidate().Label(), "V4f");
 }
 
 TEST(CandidatesTest, LabelsSelectCandidates) {
@@ -304,7 +304,7 @@ TEST(ReportTest, WritersShowAnUnloadableCandidateAsARowWithItsError) {
 
   const std::string md = SummaryMarkdown(report);
   EXPECT_NE(md.find("grn.precision: not supported"), std::string::npos);
-  EXPECT_NE(md.find("| `V2f` |"), std::string::npos);
+  EXPECT_NE(md.find("| `V4f` |"), std::string::npos);
   EXPECT_NE(md.find("not run"), std::string::npos);
   const std::string csv = SummaryCsv(report);
   EXPECT_EQ(Count(csv, "\n"), 3);
@@ -367,7 +367,7 @@ TEST(ReportTest, MixedSetGetsATableOfEachKindAndAKindColumn) {
   EXPECT_NE(md.find("2 animats (1 random genomes, 1 evolved"),
             std::string::npos);
   EXPECT_NE(md.find("### Random and evolved animats"), std::string::npos);
-  EXPECT_NE(md.find("| `V2f` | 1.0e-01 | 1.0e-01 | 20.0 | 2.0e-02 | 2.0e-02 | "
+  EXPECT_NE(md.find("| `V4f` | 1.0e-01 | 1.0e-01 | 20.0 | 2.0e-02 | 2.0e-02 | "
                     "60.0 |"),
             std::string::npos)
       << md;
