@@ -19,12 +19,14 @@ Status CheckModelText(const std::string& path, const std::string& text) {
   Status status = ParseProto(text, ProtoFormat::kText, &message);
   if (!status.ok()) return status.WithPrefix(path);
   const v1::PhysicsConfig& p = message.physics();
-  const char* compared = p.has_integrator()     ? "physics.integrator"
-                         : p.has_substeps()     ? "physics.substeps"
-                         : p.has_drag_update()  ? "physics.drag_update"
-                         : p.has_backend()      ? "physics.backend"
-                         : p.has_contacts()     ? "physics.contacts"
-                         : p.has_contact_rule() ? "physics.contact_rule"
+  const char* compared = p.has_integrator()         ? "physics.integrator"
+                         : p.has_substeps()         ? "physics.substeps"
+                         : p.has_contact_substeps() ? "physics.contact_substeps"
+                         : p.has_contact_near()     ? "physics.contact_near"
+                         : p.has_drag_update()      ? "physics.drag_update"
+                         : p.has_backend()          ? "physics.backend"
+                         : p.has_contacts()         ? "physics.contacts"
+                         : p.has_contact_rule()     ? "physics.contact_rule"
                          : message.grn().has_precision() ? "grn.precision"
                                                          : nullptr;
   if (compared != nullptr) {

@@ -2,7 +2,10 @@
 
 #include <google/protobuf/util/message_differencer.h>
 
+#include <utility>
+
 #include "animat/v1/config.pb.h"
+#include "common/base/text.h"
 #include "common/io/proto_file.h"
 
 namespace animat::accuracy {
@@ -36,6 +39,7 @@ std::string Candidate::Label() const {
   }
   std::string label(1, letter);
   label += std::to_string(substeps);
+  if (contact_substeps > 0) label += "c" + std::to_string(contact_substeps);
   if (drag_update == "STABLE") label += 's';
   if (precision == "FLOAT") label += 'f';
   return label;
@@ -55,6 +59,10 @@ std::string Candidate::Name() const {
     name += "euler";
   }
   name += std::string(" ×") + std::to_string(substeps);
+  if (contact_substeps > 0) {
+    name += " (×" + std::to_string(contact_substeps) + " within n " +
+            ShortestDouble(contact_near) + " of a contact)";
+  }
   name += drag_update == "STABLE" ? ", stable" : ", explicit";
   name += precision == "FLOAT" ? ", float" : ", double";
   return name;
@@ -73,8 +81,12 @@ std::string Candidate::Group() const {
 std::string Candidate::ConfigText() const {
   std::string text = "physics { integrator: " + integrator +
                      " substeps: " + std::to_string(substeps) +
-                     " drag_update: " + drag_update + " backend: " + backend +
-                     " }";
+                     " contact_substeps: " + std::to_string(contact_substeps) +
+                     " drag_update: " + drag_update + " backend: " + backend;
+  if (contact_substeps > 0) {
+    text += " contact_near: " + ShortestDouble(contact_near);
+  }
+  text += " }";
   // Always spelled out: the default precision has changed before.
   text += " grn { precision: " + precision + " }";
   return text;
@@ -104,6 +116,17 @@ std::vector<Candidate> CandidateSet() {
   // where stiff contacts put the cheapest that meets the rule.
   for (const char* precision : {"DOUBLE", "FLOAT"}) {
     set.push_back(Make("VELOCITY_VERLET", 3, "EXPLICIT", precision, "NATIVE"));
+  }
+  // Velocity Verlet with 1 or 2 sub-steps, but 3 or 4 in a step that
+  // starts with a contact near: the fine steps stiff contacts need only
+  // where they act.
+  for (const auto [substeps, near] : {std::pair{1, 4}, {2, 3}, {2, 4}}) {
+    for (const char* precision : {"DOUBLE", "FLOAT"}) {
+      Candidate c =
+          Make("VELOCITY_VERLET", substeps, "EXPLICIT", precision, "NATIVE");
+      c.contact_substeps = near;
+      set.push_back(c);
+    }
   }
   // The third-order schemes with explicit drag only: the stable drag
   // update's splitting is at most second order (docs/accuracy.md).

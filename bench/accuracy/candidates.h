@@ -21,16 +21,24 @@ struct Candidate {
   // "SEMI_IMPLICIT_EULER", "VELOCITY_VERLET", "RK4", "SSPRK3", "RALSTON3".
   std::string integrator;
   int substeps = 1;
+  // Sub-steps in a step that starts with a contact near (0: `substeps` in
+  // every step; physics.contact_substeps).
+  int contact_substeps = 0;
+  // physics.contact_near (n) for contact sub-steps; written only with
+  // contact_substeps > 0.
+  double contact_near = PhysicsParams{}.contact_near;
   std::string drag_update;  // "EXPLICIT", "STABLE".
   std::string precision;    // "DOUBLE", "FLOAT".
   std::string backend;      // "NATIVE", "BULLET".
 
   // Compact label for plots: integrator letter (E semi-implicit Euler,
   // V velocity Verlet, R RK4, S SSPRK3, L Ralston's third order, B Bullet),
-  // sub-steps, "s" for the stable drag
-  // update, "f" for float network arithmetic: "E1", "R4s", "B2f".
+  // sub-steps, "c" and the sub-steps near contacts when they differ,
+  // "s" for the stable drag update, "f" for float network arithmetic:
+  // "E1", "R4s", "B2f", "V2c4f".
   std::string Label() const;
-  // Readable name: "euler ×1, explicit, double" ("bullet euler ×2, ...").
+  // Readable name: "euler ×1, explicit, double" ("bullet euler ×2, ...",
+  // "verlet ×2 (×4 within n 0.1 of a contact), explicit, float").
   std::string Name() const;
   // The group a plot colours it by: "semi-implicit Euler", "velocity
   // Verlet", "RK4", "third-order Runge-Kutta", "Bullet".
@@ -43,15 +51,17 @@ struct Candidate {
 
 // RK4, 16 sub-steps, explicit drag, double, native.
 Candidate ReferenceCandidate();
-// The default configuration: Ralston's third order, 1 sub-step, explicit
-// drag, float network arithmetic, native ("L1f").
+// The default configuration: velocity Verlet, 4 sub-steps, explicit drag,
+// float network arithmetic, native ("V4f").
 Candidate DefaultCandidate();
 
 // Every native integrator x sub-steps {1, 2, 4} x drag update {explicit,
 // stable} x precision {double, float} for Euler, Verlet and RK4; the two
 // third-order schemes with sub-steps {1, 2}, explicit drag, both
-// precisions; then the Bullet backend (semi-implicit Euler, 1 and 2
-// sub-steps, explicit drag, both precisions).
+// precisions; velocity Verlet with 3 sub-steps, and with 1 or 2 sub-steps
+// but 4 in steps near a contact, explicit drag, both precisions; then the
+// Bullet backend (semi-implicit Euler, 1 and 2 sub-steps, explicit drag, both
+// precisions).
 std::vector<Candidate> CandidateSet();
 
 // The candidates of CandidateSet() with these labels, in the set's order;

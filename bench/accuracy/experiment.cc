@@ -91,7 +91,8 @@ int Counterpart(const std::vector<CandidateResult>& all, const Candidate& c) {
             ? o.backend == "NATIVE" && o.precision == c.precision
             : o.backend == c.backend && o.precision == "DOUBLE";
     if (other_options && o.integrator == c.integrator &&
-        o.substeps == c.substeps && o.drag_update == c.drag_update) {
+        o.substeps == c.substeps && o.contact_substeps == c.contact_substeps &&
+        o.drag_update == c.drag_update) {
       return static_cast<int>(i);
     }
   }
@@ -192,6 +193,9 @@ Result<Report> RunExperiment(const ExperimentOptions& options) {
   Result<std::vector<Candidate>> candidates =
       SelectCandidates(options.candidates);
   if (!candidates.ok()) return candidates.status();
+  if (options.contact_near >= 0.0) {
+    for (Candidate& c : *candidates) c.contact_near = options.contact_near;
+  }
   Result<std::vector<Animat>> loaded = LoadAnimatSet(options.data_dir);
   if (!loaded.ok()) return loaded.status();
   std::vector<Animat> animats = *loaded;

@@ -34,6 +34,9 @@ struct ExperimentOptions {
   // Only the candidates with these labels (Candidate::Label, e.g. "R1f");
   // empty for the whole CandidateSet(). An unknown label is an error.
   std::vector<std::string> candidates;
+  // physics.contact_near for the candidates with contact sub-steps
+  // (negative: the model's default).
+  double contact_near = -1.0;
 };
 
 // The chaos measurement's motion steps.

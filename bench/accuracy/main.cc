@@ -2,6 +2,7 @@
 //
 //   build/bin/animat-accuracy [--out docs/accuracy] [--quick]
 //       [--repeats 3] [--animats N] [--data DIR] [--candidates R1f,S1f]
+//       [--contact-near 0.1]
 //
 // Evaluates a fixed set of animats (bench/data/accuracy/) under a reference
 // configuration (RK4, 16 sub-steps, double) and under every candidate
@@ -37,6 +38,7 @@ struct Options {
   int repeats = 3;
   int animats = 0;
   std::vector<std::string> candidates;
+  double contact_near = -1.0;
 };
 
 // Makes --out (and its parents) unless it exists, and checks that it is a
@@ -70,6 +72,7 @@ int Run(const Options& o) {
   options.max_animats = o.animats;  // 0: all, or --quick's subset.
   options.progress = &std::cerr;
   options.candidates = o.candidates;
+  options.contact_near = o.contact_near;
   animat::Result<animat::accuracy::Report> report =
       animat::accuracy::RunExperiment(options);
   if (!report.ok()) {
@@ -120,6 +123,10 @@ int main(int argc, char** argv) {
                  "Only these candidates, by label (e.g. R1f,S1f; default: "
                  "all)")
       ->delimiter(',');
+  app.add_option("--contact-near", o.contact_near,
+                 "physics.contact_near of the candidates with contact "
+                 "sub-steps (default: the model's, 0.1)")
+      ->check(CLI::Range(0.0, 1e6));
   if (const std::optional<int> code =
           animat::ParseCommandLine(app, argc, argv, "animat-accuracy")) {
     return *code;

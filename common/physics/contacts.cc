@@ -35,12 +35,14 @@ Contacts::Contacts(const Body& body, const PhysicsParams& params, bool forces)
       active_(forces && params.contact_rule != ContactRule::kNone),
       unjoined_(kSkin),
       all_(kSkin),
+      near_(kSkin),
       forces_use_all_(params.contact_rule == ContactRule::kAll) {
   radius_.resize(body.nodes(), 1.0);  // A body without radii: all 1.
   std::vector<IndexEdge> joined;
   joined.reserve(body.springs.size());
   for (const Spring& s : body.springs) joined.push_back({s.a, s.b});
   unjoined_.Exclude(joined);
+  if (!forces_use_all_) near_.Exclude(joined);
 }
 
 void Contacts::AddForces(std::span<const Vec2> x, std::span<const Vec2> v,
@@ -66,6 +68,22 @@ void Contacts::AddForces(std::span<const Vec2> x, std::span<const Vec2> v,
       force[i] -= fu;
     }
   }
+}
+
+bool Contacts::Near(std::span<const Vec2> x, double margin) {
+  if (!active_) return false;
+  assert(x.size() == radius_.size());
+  const double range = kRange * (1.0 + margin);
+  near_.Update(x, radius_, range);
+  const int n = static_cast<int>(radius_.size());
+  for (int i = 0; i < n; ++i) {
+    for (int j : near_.Partners(i)) {
+      const Vec2 d = x[j] - x[i];
+      const double reach = range * (radius_[i] + radius_[j]);
+      if (d.x * d.x + d.y * d.y < reach * reach) return true;
+    }
+  }
+  return false;
 }
 
 double Contacts::DeepestUnjoinedOverlap(std::span<const Vec2> x) {

@@ -45,6 +45,12 @@ class Contacts {
   // cell) to `force`.
   void AddForces(std::span<const Vec2> x, std::span<const Vec2> v, Vec2* force);
 
+  // Whether some pair that AddForces admits lies closer than
+  // (1 + margin) · (r_i + r_j) at positions x (squared distances
+  // compared): a contact acts there now or may within a step (docs/model.md
+  // §7.6, contact sub-steps). `margin` >= 0; false when !active().
+  bool Near(std::span<const Vec2> x, double margin);
+
   // The deepest overlap of two cells not joined by a spring at positions
   // x: the largest δ / (r_i + r_j), in (0, 1], or 0 when no such pair
   // overlaps. Pairs whose δ is not a number are ignored (the evaluation's
@@ -60,6 +66,8 @@ class Contacts {
   // forces too under UNJOINED) and for every pair (forces under ALL).
   ContactPairs unjoined_;
   ContactPairs all_;
+  // Candidates for Near: the admitted pairs, listed at its wider reach.
+  ContactPairs near_;
   bool forces_use_all_;
 };
 

@@ -37,6 +37,12 @@ constexpr ParamRow<PhysicsParams> kRows[] = {
     {"contact_damping", &PhysicsParams::contact_damping,
      ParamRange::NonNegative(),
      "gamma_c (force per unit approach speed); NATIVE only"},
+    {"contact_substeps", &PhysicsParams::contact_substeps,
+     ParamRange::Closed(0, 1024),
+     "sub-steps in a step that starts with a contact near (0: substeps "
+     "always); NATIVE only"},
+    {"contact_near", &PhysicsParams::contact_near, ParamRange::NonNegative(),
+     "a contact is near within (1 + this) (r_i + r_j)"},
 };
 
 // "rk4" -> "RK4": the enum value's name in config files.

@@ -51,6 +51,11 @@ struct PhysicsParams {
   // docs/model.md §11.4).
   Integrator integrator = Integrator::kVelocityVerlet;
   int substeps = 4;  // Physics sub-steps per simulation step.
+  // Sub-steps instead of `substeps` in a step that starts with an admitted
+  // pair of cells within (1 + contact_near) · (r_i + r_j) of each other
+  // (0: `substeps` in every step). NATIVE with contacts only (model §7.6).
+  int contact_substeps = 0;
+  double contact_near = 0.1;
   DragUpdate drag_update = DragUpdate::kExplicit;
   PhysicsBackend backend = PhysicsBackend::kNative;
   ContactRule contact_rule = ContactRule::kUnjoined;

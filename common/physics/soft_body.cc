@@ -191,7 +191,11 @@ void SoftBody::AddContactForces(const MotionState& state, Vec2* force) {
 }
 
 void SoftBody::Step(MotionState* state) {
-  const int substeps = params_.substeps;
+  int substeps = params_.substeps;
+  if (params_.contact_substeps > 0 &&
+      contacts_.Near(state->position, params_.contact_near)) {
+    substeps = params_.contact_substeps;
+  }
   // dt / 1 == dt: the default path is exactly docs/model.md §7.6's step.
   const double h = params_.dt / substeps;
   const bool stable = params_.drag_update == DragUpdate::kStable;

@@ -204,9 +204,10 @@ TEST(SvgTest, EmptyPlotIsStillWellFormed) {
 TEST(CandidatesTest, SetCoversEveryCombinationWithUniqueLabels) {
   const std::vector<Candidate> set = CandidateSet();
   // Euler, Verlet, RK4 x {1, 2, 4} x {explicit, stable} x {double, float};
-  // Verlet x 3, explicit, x {double, float}; SSPRK3, Ralston's x {1, 2} x
-  // {double, float}; Bullet x {1, 2} x {double, float}.
-  EXPECT_EQ(set.size(), 3u * 3 * 2 * 2 + 2 + 2 * 2 * 2 + 4);
+  // Verlet x 3, explicit, x {double, float}; Verlet x 1 with 4 near
+  // contacts and x 2 with 3 or 4, x {double, float}; SSPRK3, Ralston's x
+  // {1, 2} x {double, float}; Bullet x {1, 2} x {double, float}.
+  EXPECT_EQ(set.size(), 3u * 3 * 2 * 2 + 2 + 3 * 2 + 2 * 2 * 2 + 4);
   std::set<std::string> labels;
   for (const Candidate& c : set) labels.insert(c.Label());
   EXPECT_EQ(labels.size(), set.size());
@@ -234,6 +235,8 @@ TEST(CandidatesTest, DefaultCandidateIsTheModelsDefaultConfig) {
   const ModelConfig defaults;
   EXPECT_EQ(config->physics.integrator, defaults.physics.integrator);
   EXPECT_EQ(config->physics.substeps, defaults.physics.substeps);
+  EXPECT_EQ(config->physics.contact_substeps,
+            defaults.physics.contact_substeps);
   EXPECT_EQ(config->physics.drag_update, defaults.physics.drag_update);
   EXPECT_EQ(config->physics.backend, defaults.physics.backend);
   EXPECT_EQ(config->grn.precision, defaults.grn.precision);
@@ -249,6 +252,29 @@ TEST(CandidatesTest, EveryCandidateGetsThePrecisionItNames) {
               c.precision == "FLOAT" ? Precision::kFloat : Precision::kDouble)
         << c.Label();
   }
+}
+
+TEST(CandidatesTest, ContactSubstepsAreWrittenAndLabelled) {
+  Result<std::vector<Candidate>> some = SelectCandidates({"V2c4f", "V2f"});
+  ASSERT_TRUE(some.ok()) << some.status().message();
+  ASSERT_EQ(some->size(), 2u);
+  for (const Candidate& c : *some) {
+    Result<ModelConfig> config = CandidateConfig(c);
+    ASSERT_TRUE(config.ok()) << c.Label() << ": " << config.status().message();
+    EXPECT_EQ(config->physics.substeps, 2);
+    // Written even when 0, so that a default with contact sub-steps does
+    // not change the uniform candidates.
+    EXPECT_EQ(config->physics.contact_substeps, c.Label() == "V2f" ? 0 : 4);
+  }
+  EXPECT_NE((*some)[1].Name().find("(×4 within n 0.1 of a contact)"),
+            std::string::npos)
+      << (*some)[1].Name();
+  // Another n is written and read back.
+  Candidate wider = (*some)[1];
+  wider.contact_near = 0.25;
+  Result<ModelConfig> config = CandidateConfig(wider);
+  ASSERT_TRUE(config.ok()) << config.status().message();
+  EXPECT_EQ(config->physics.contact_near, 0.25);
 }
 
 TEST(CandidatesTest, ReferenceConfigIsRk4WithSixteenSubsteps) {
