@@ -8,8 +8,10 @@ only finds the bests and tabulates, as a table (Markdown) and the numbers
 
   model v2   every replication best of docs/results/bests/ (dn*-seed*),
              under its own configuration (model v2: no contacts);
-  model v3   the best of each lineage store given with --db (the run's own
-             configuration), e.g. the third replication's stores.
+  model v3   the best of each run given with --db: a lineage store (its
+             best individual, the run's own configuration) or a run
+             record's folder (scripts/run_record.py; its best's genome and
+             model files), e.g. docs/results/runs/v3-dn0.1-seed1.
 
 With --kernel-lengths 3,1.5,1 it also prints, for each v2 best's body
 (its rest positions, from `animat simulate --trace`), the cells' mean and
@@ -54,14 +56,34 @@ def v2_bests():
         yield name, ["--genome", path, "--config", config]
 
 
-def v3_bests(animat, dbs):
+def model_of(config_text):
+    """"v2" for a configuration without contacts (contact_rule NONE, or
+    model v2's contacts: false), else "v3"."""
+    if re.search(r"contact_rule:\s*NONE\b|\bcontacts:\s*false\b",
+                 config_text):
+        return "v2"
+    return "v3"
+
+
+def run_bests(animat, dbs):
+    """(model, name, source) of the best of each store or record folder."""
     for db in dbs:
+        record = os.path.join(db, "record.json")
+        if os.path.isfile(record):
+            with open(record) as f:
+                data = json.load(f)
+            genome = data["best"]["genome"]
+            stem = os.path.join(db, genome)
+            yield model_of(data["config_text"]), genome, [
+                "--genome", stem + ".json", "--config",
+                stem + ".config.txtpb"]
+            continue
         best = run([animat, "lineage", "best", "--db", db])
         found = re.search(r"^id: (\d+)$", best, re.MULTILINE)
         if not found:
             raise RuntimeError(f"{db}: no best individual")
         name = os.path.basename(db)[:-len(".db")] + "-" + found.group(1)
-        yield name, ["--db", db, "--individual", found.group(1)]
+        yield "v3", name, ["--db", db, "--individual", found.group(1)]
 
 
 def row(model, name, s):
@@ -141,8 +163,7 @@ def main():
     rows, failures = [], 0
     sources = [("v2", name, source) for name, source in v2_bests()]
     try:
-        sources += [("v3", name, source)
-                    for name, source in v3_bests(args.animat, args.db)]
+        sources += list(run_bests(args.animat, args.db))
     except RuntimeError as error:
         print(f"signal_saturation.py: {error}", file=sys.stderr)
         failures += 1
