@@ -57,12 +57,15 @@ void ContactPairs::Update(std::span<const Vec2> position,
   assert(position.size() == radius.size());
   // The same bits as the last Update: the list is as valid (or as exact,
   // out of bounds) as it was then.
-  if (builds_ > 0 && position.size() == last_seen_.size() &&
+  if (builds_ > 0 && range == built_range_ &&
+      position.size() == last_seen_.size() &&
       std::memcmp(position.data(), last_seen_.data(),
                   position.size() * sizeof(Vec2)) == 0) {
     return;
   }
-  if (!Valid(position)) Build(position, radius, range);
+  if (range != built_range_ || !Valid(position)) {
+    Build(position, radius, range);
+  }
   last_seen_.assign(position.begin(), position.end());
 }
 
@@ -85,6 +88,7 @@ void ContactPairs::Build(std::span<const Vec2> position,
                          std::span<const double> radius, double range) {
   const int n = static_cast<int>(position.size());
   ++builds_;
+  built_range_ = range;
   built_at_.assign(position.begin(), position.end());
   begin_.assign(1, 0);
   partner_.clear();

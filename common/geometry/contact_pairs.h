@@ -9,16 +9,15 @@
 // excluded once and for all (Exclude). It stays valid while no cell has
 // moved more than a fraction of the skin since then: two cells that were
 // farther apart than reach + skin cannot have come within reach. Update()
-// rebuilds it when a cell has moved that far, when the cell count has
-// changed, and whenever a coordinate is not finite or beyond 2^20 radii
-// (where the rounding of the distances is no longer far below the
-// margin). A pair left out (and not excluded) therefore fails the exact
-// test d < range · s: visiting only the listed pairs, in the same order,
-// gives the same forces bit for bit. Radii must not change between
-// rebuilds (development fixes a cell's radius at its birth). An Update at
-// the very positions (the same bits) of the one before costs a comparison
-// of the positions only: integrators evaluate forces more than once at one
-// state.
+// rebuilds it when a cell has moved that far, when the cell count or the range
+// has changed, and whenever a coordinate is not finite or beyond 2^20 radii
+// (where the rounding of the distances is no longer far below the margin). A
+// pair left out (and not excluded) therefore fails the exact test d < range ·
+// s: visiting only the listed pairs, in the same order, gives the same forces
+// bit for bit. Radii must not change between rebuilds (development fixes a
+// cell's radius at its birth). An Update at the very positions (the same bits)
+// of the one before costs a comparison of the positions only: integrators
+// evaluate forces more than once at one state.
 //
 // Lengths in cell radii. Owns its storage; not thread-safe (one per
 // simulation); copies are independent.
@@ -70,6 +69,7 @@ class ContactPairs {
 
   double skin_;
   long long builds_ = 0;
+  double built_range_ = 0.0;    // The range of the last Build.
   std::vector<Vec2> built_at_;  // Positions when the list was built.
   // The positions of the last Update: the same bits again need no check.
   std::vector<Vec2> last_seen_;

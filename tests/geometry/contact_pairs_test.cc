@@ -124,6 +124,21 @@ TEST(ContactPairsTest, SmallMovesKeepTheListLargeMovesRebuildIt) {
   EXPECT_TRUE(Listed(pairs, 1, 2));
 }
 
+TEST(ContactPairsTest, AnotherRangeRebuildsTheList) {
+  // 4.5 apart, radii 1: beyond 1.2 · 2 + skin = 2.9, within 2.5 · 2 = 5.
+  const std::vector<Vec2> x = {{0.0, 0.0}, {4.5, 0.0}};
+  const std::vector<double> r = {1.0, 1.0};
+  ContactPairs pairs(kSkin);
+  pairs.Update(x, r, kRange);
+  EXPECT_FALSE(Listed(pairs, 0, 1));
+  pairs.Update(x, r, 2.5);  // The same positions, a wider range.
+  EXPECT_EQ(pairs.builds(), 2);
+  EXPECT_TRUE(Listed(pairs, 0, 1));
+  pairs.Update(x, r, kRange);
+  EXPECT_EQ(pairs.builds(), 3);
+  EXPECT_FALSE(Listed(pairs, 0, 1));
+}
+
 TEST(ContactPairsTest, NewCellRebuildsTheList) {
   std::vector<Vec2> x = {{0.0, 0.0}, {2.0, 0.0}};
   std::vector<double> r = {1.0, 1.0};
