@@ -39,7 +39,10 @@ std::string Candidate::Label() const {
   }
   std::string label(1, letter);
   label += std::to_string(substeps);
-  if (contact_substeps > 0) label += "c" + std::to_string(contact_substeps);
+  if (contact_substeps > 0) {
+    label += 'c';
+    label += std::to_string(contact_substeps);
+  }
   if (drag_update == "STABLE") label += 's';
   if (precision == "FLOAT") label += 'f';
   return label;
@@ -120,7 +123,7 @@ std::vector<Candidate> CandidateSet() {
   // Velocity Verlet with 1 or 2 sub-steps, but 3 or 4 in a step that
   // starts with a contact near: the fine steps stiff contacts need only
   // where they act.
-  for (const auto [substeps, near] : {std::pair{1, 4}, {2, 3}, {2, 4}}) {
+  for (const auto& [substeps, near] : {std::pair{1, 4}, {2, 3}, {2, 4}}) {
     for (const char* precision : {"DOUBLE", "FLOAT"}) {
       Candidate c =
           Make("VELOCITY_VERLET", substeps, "EXPLICIT", precision, "NATIVE");
