@@ -52,6 +52,14 @@ inline Body RandomBody(Source& source, int n, double side) {
   return MustBuild(points);
 }
 
+// Whether a spring joins cells i and j (in either order).
+inline bool Joined(const Body& body, int i, int j) {
+  for (const Spring& s : body.springs) {
+    if ((s.a == i && s.b == j) || (s.a == j && s.b == i)) return true;
+  }
+  return false;
+}
+
 inline MotionState AtRest(const Body& body) {
   MotionState state;
   state.position = body.position;

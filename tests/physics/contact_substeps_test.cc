@@ -21,15 +21,9 @@ namespace animat {
 namespace {
 
 using testing::AtRest;
+using testing::Joined;
 using testing::RandomBody;
 using testing::Source;
-
-bool Joined(const Body& body, int i, int j) {
-  for (const Spring& s : body.springs) {
-    if ((s.a == i && s.b == j) || (s.a == j && s.b == i)) return true;
-  }
-  return false;
-}
 
 // Near by testing every pair i < j that the rule admits.
 bool ReferenceNear(const Body& body, ContactRule rule,

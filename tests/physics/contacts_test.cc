@@ -26,6 +26,7 @@ namespace animat {
 namespace {
 
 using testing::AtRest;
+using testing::Joined;
 using testing::RandomBody;
 using testing::Source;
 
@@ -61,12 +62,8 @@ std::vector<Vec2> ReferenceForces(const Body& body, const PhysicsParams& p,
   std::vector<Vec2> force(n);
   for (int i = 0; i < n; ++i) {
     for (int j = i + 1; j < n; ++j) {
-      bool joined = false;
-      for (const Spring& s : body.springs) {
-        joined |= (s.a == i && s.b == j) || (s.a == j && s.b == i);
-      }
       if (p.contact_rule == ContactRule::kNone ||
-          (joined && p.contact_rule == ContactRule::kUnjoined)) {
+          (Joined(body, i, j) && p.contact_rule == ContactRule::kUnjoined)) {
         continue;
       }
       const Vec2 d = state.position[j] - state.position[i];
@@ -88,11 +85,7 @@ double ReferenceDeepest(const Body& body, const MotionState& state) {
   double deepest = 0.0;
   for (int i = 0; i < body.nodes(); ++i) {
     for (int j = i + 1; j < body.nodes(); ++j) {
-      bool joined = false;
-      for (const Spring& s : body.springs) {
-        joined |= (s.a == i && s.b == j) || (s.a == j && s.b == i);
-      }
-      if (joined) continue;
+      if (Joined(body, i, j)) continue;
       const double s = body.radius[i] + body.radius[j];
       const double l = Length(state.position[j] - state.position[i]);
       if (s - l > 0.0) deepest = std::max(deepest, (s - l) / s);
