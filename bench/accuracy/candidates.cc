@@ -89,6 +89,9 @@ std::string Candidate::ConfigText() const {
   if (contact_substeps > 0) {
     text += " contact_near: " + ShortestDouble(contact_near);
   }
+  if (contact_stiffness >= 0.0) {
+    text += " contact_stiffness: " + ShortestDouble(contact_stiffness);
+  }
   text += " }";
   // Always spelled out: the default precision has changed before.
   text += " grn { precision: " + precision + " }";

@@ -27,6 +27,9 @@ struct Candidate {
   // physics.contact_near (n) for contact sub-steps; written only with
   // contact_substeps > 0.
   double contact_near = PhysicsParams{}.contact_near;
+  // physics.contact_stiffness (k_c); negative: the model's default, not
+  // written. A whole report runs at one k_c, so it is not in the label.
+  double contact_stiffness = -1.0;
   std::string drag_update;  // "EXPLICIT", "STABLE".
   std::string precision;    // "DOUBLE", "FLOAT".
   std::string backend;      // "NATIVE", "BULLET".

@@ -196,6 +196,12 @@ Result<Report> RunExperiment(const ExperimentOptions& options) {
   if (options.contact_near >= 0.0) {
     for (Candidate& c : *candidates) c.contact_near = options.contact_near;
   }
+  // Every configuration at the one k_c (the model's unless asked).
+  auto at_stiffness = [&](Candidate c) {
+    c.contact_stiffness = options.contact_stiffness;
+    return c;
+  };
+  for (Candidate& c : *candidates) c = at_stiffness(c);
   Result<std::vector<Animat>> loaded = LoadAnimatSet(options.data_dir);
   if (!loaded.ok()) return loaded.status();
   std::vector<Animat> animats = *loaded;
@@ -206,11 +212,13 @@ Result<Report> RunExperiment(const ExperimentOptions& options) {
   } else if (options.quick) {
     animats = QuickSubset(animats, kQuickRandom, kQuickEvolved);
   }
-  Result<ModelConfig> reference_config = CandidateConfig(ReferenceCandidate());
+  Result<ModelConfig> reference_config =
+      CandidateConfig(at_stiffness(ReferenceCandidate()));
   if (!reference_config.ok()) {
     return reference_config.status().WithPrefix("reference configuration");
   }
-  Result<ModelConfig> default_config = CandidateConfig(DefaultCandidate());
+  Result<ModelConfig> default_config =
+      CandidateConfig(at_stiffness(DefaultCandidate()));
   if (!default_config.ok()) {
     return default_config.status().WithPrefix("default configuration");
   }
@@ -218,6 +226,7 @@ Result<Report> RunExperiment(const ExperimentOptions& options) {
   Report report;
   report.quick = options.quick;
   report.repeats = std::max(1, options.repeats);
+  report.contact_stiffness = reference_config->physics.contact_stiffness;
   report.machine =
       CpuModel() + ", " + std::to_string(std::thread::hardware_concurrency()) +
       " logical CPUs, load average " + LoadAverage() + " at the start";
@@ -256,7 +265,7 @@ Result<Report> RunExperiment(const ExperimentOptions& options) {
 
   // Has the reference converged? RK4 with twice its sub-steps.
   {
-    Candidate check = ReferenceCandidate();
+    Candidate check = at_stiffness(ReferenceCandidate());
     check.substeps *= 2;
     Result<ModelConfig> check_config = CandidateConfig(check);
     if (!check_config.ok()) {

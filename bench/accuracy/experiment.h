@@ -37,6 +37,9 @@ struct ExperimentOptions {
   // physics.contact_near for the candidates with contact sub-steps
   // (negative: the model's default).
   double contact_near = -1.0;
+  // physics.contact_stiffness (k_c) of every configuration, the reference
+  // and the convergence check included (negative: the model's default).
+  double contact_stiffness = -1.0;
 };
 
 // The chaos measurement's motion steps.

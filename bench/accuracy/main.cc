@@ -2,7 +2,7 @@
 //
 //   build/bin/animat-accuracy [--out docs/accuracy] [--quick]
 //       [--repeats 3] [--animats N] [--data DIR] [--candidates R1f,S1f]
-//       [--contact-near 0.1]
+//       [--contact-near 0.1] [--contact-stiffness 1500]
 //
 // Evaluates a fixed set of animats (bench/data/accuracy/) under a reference
 // configuration (RK4, 16 sub-steps, double) and under every candidate
@@ -39,6 +39,7 @@ struct Options {
   int animats = 0;
   std::vector<std::string> candidates;
   double contact_near = -1.0;
+  double contact_stiffness = -1.0;
 };
 
 // Makes --out (and its parents) unless it exists, and checks that it is a
@@ -73,6 +74,7 @@ int Run(const Options& o) {
   options.progress = &std::cerr;
   options.candidates = o.candidates;
   options.contact_near = o.contact_near;
+  options.contact_stiffness = o.contact_stiffness;
   animat::Result<animat::accuracy::Report> report =
       animat::accuracy::RunExperiment(options);
   if (!report.ok()) {
@@ -127,6 +129,10 @@ int main(int argc, char** argv) {
                  "physics.contact_near of the candidates with contact "
                  "sub-steps (default: the model's, 0.1)")
       ->check(CLI::Range(0.0, 1e6));
+  app.add_option("--contact-stiffness", o.contact_stiffness,
+                 "physics.contact_stiffness (k_c) of every configuration, "
+                 "the reference included (default: the model's)")
+      ->check(CLI::Range(0.0, 1e9));
   if (const std::optional<int> code =
           animat::ParseCommandLine(app, argc, argv, "animat-accuracy")) {
     return *code;

@@ -203,7 +203,7 @@ std::string OverlapSummary(const Report& report) {
   const double p90 = sorted[static_cast<size_t>(0.9 * (sorted.size() - 1))];
   const PhysicsParams defaults;
   return std::string("Contacts: ") + ContactRuleName(defaults.contact_rule) +
-         ", k_c " + Format("%g", defaults.contact_stiffness) +
+         ", k_c " + Format("%g", report.contact_stiffness) +
          ". Deepest unjoined overlap under the reference: " +
          Format("%.1f%%", 100 * report.reference_overlap[worst]) + " (" +
          report.animats[worst] + "), 90th percentile " +

@@ -114,6 +114,8 @@ struct Report {
   // Per animat, in order: the deepest unjoined overlap under the reference
   // (docs/model.md §8.6), which the contact stiffness is chosen by.
   std::vector<double> reference_overlap;
+  // The contact stiffness k_c every configuration ran with.
+  double contact_stiffness = 0.0;
   // Per animat, in order: its fitness under the convergence check (RK4
   // with twice the reference's sub-steps), and whether the two agree within
   // kConvergenceTolerance. An animat whose reference does not converge has

@@ -277,6 +277,22 @@ TEST(CandidatesTest, ContactSubstepsAreWrittenAndLabelled) {
   EXPECT_EQ(config->physics.contact_near, 0.25);
 }
 
+TEST(CandidatesTest, ContactStiffnessIsWrittenOnlyWhenAsked) {
+  Candidate c = DefaultCandidate();
+  EXPECT_EQ(c.ConfigText().find("contact_stiffness"), std::string::npos);
+  Result<ModelConfig> config = CandidateConfig(c);
+  ASSERT_TRUE(config.ok()) << config.status().message();
+  EXPECT_EQ(config->physics.contact_stiffness,
+            PhysicsParams{}.contact_stiffness);
+  // --contact-stiffness: every configuration at another k_c, the label
+  // unchanged (a whole report runs at one k_c).
+  c.contact_stiffness = 3000;
+  config = CandidateConfig(c);
+  ASSERT_TRUE(config.ok()) << config.status().message();
+  EXPECT_EQ(config->physics.contact_stiffness, 3000);
+  EXPECT_EQ(c.Label(), DefaultCandidate().Label());
+}
+
 TEST(CandidatesTest, ReferenceConfigIsRk4WithSixteenSubsteps) {
   Result<ModelConfig> config = CandidateConfig(ReferenceCandidate());
   ASSERT_TRUE(config.ok()) << config.status().message();
