@@ -116,6 +116,7 @@ Result<std::vector<ModelConfig>> PerAnimat(const ModelConfig& config,
 void Summarise(CandidateResult* result) {
   std::vector<double> fitness, trajectory, ms_ok, ms_all, cpu_ok, cpu_all;
   result->failures = 0;
+  result->max_overlap = 0.0;
   for (const AnimatResult& a : result->animats) {
     // Errors only against a converged reference; failures and times of
     // every animat.
@@ -126,6 +127,7 @@ void Summarise(CandidateResult* result) {
     ms_all.push_back(a.ms);
     cpu_all.push_back(a.cpu_ms);
     if (a.status == "ok") {
+      result->max_overlap = std::max(result->max_overlap, a.max_overlap);
       ms_ok.push_back(a.ms);
       cpu_ok.push_back(a.cpu_ms);
     } else {

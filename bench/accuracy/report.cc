@@ -154,7 +154,7 @@ std::string SummaryCsv(const Report& report) {
       "trajectory_error_median,trajectory_error_p90,ms_per_evaluation_median,"
       "cpu_ms_per_evaluation_median,pareto_front,order_swaps,order_pairs,"
       "error,note,counterpart,counterpart_difference_median,"
-      "counterpart_difference_p90,meets_rule,chosen\n";
+      "counterpart_difference_p90,max_overlap,meets_rule,chosen\n";
   for (const CandidateResult& c : report.candidates) {
     const Candidate& k = c.candidate;
     csv += k.Label() + "," + CsvField(k.Name()) + "," + k.integrator + "," +
@@ -163,23 +163,23 @@ std::string SummaryCsv(const Report& report) {
            k.precision + "," + k.backend + ",";
     if (!Measured(c)) {
       csv += std::string(",,,,,,,,false,,,") + CsvField(c.error) +
-             ",,,,,false,false\n";
+             ",,,,,,false,false\n";
       continue;
     }
-    csv += std::to_string(c.animats.size()) + "," + std::to_string(c.failures) +
-           "," + CsvNumber(c.fitness_error_median) + "," +
-           CsvNumber(c.fitness_error_p90) + "," +
-           CsvNumber(c.trajectory_error_median) + "," +
-           CsvNumber(c.trajectory_error_p90) + "," +
-           Format("%.3f", c.ms_median) + "," + Format("%.3f", c.cpu_ms_median) +
-           "," + (c.on_front ? "true" : "false") + "," +
-           std::to_string(c.order_swaps) + "," + std::to_string(c.order_pairs) +
-           "," + CsvField(c.error) + "," + CsvField(c.note) + "," +
-           c.counterpart + "," +
-           (c.counterpart.empty() ? "" : CsvNumber(c.counterpart_median)) +
-           "," + (c.counterpart.empty() ? "" : CsvNumber(c.counterpart_p90)) +
-           "," + (c.MeetsRule() ? "true" : "false") + "," +
-           (k.Label() == report.rule_choice ? "true" : "false") + "\n";
+    csv +=
+        std::to_string(c.animats.size()) + "," + std::to_string(c.failures) +
+        "," + CsvNumber(c.fitness_error_median) + "," +
+        CsvNumber(c.fitness_error_p90) + "," +
+        CsvNumber(c.trajectory_error_median) + "," +
+        CsvNumber(c.trajectory_error_p90) + "," + Format("%.3f", c.ms_median) +
+        "," + Format("%.3f", c.cpu_ms_median) + "," +
+        (c.on_front ? "true" : "false") + "," + std::to_string(c.order_swaps) +
+        "," + std::to_string(c.order_pairs) + "," + CsvField(c.error) + "," +
+        CsvField(c.note) + "," + c.counterpart + "," +
+        (c.counterpart.empty() ? "" : CsvNumber(c.counterpart_median)) + "," +
+        (c.counterpart.empty() ? "" : CsvNumber(c.counterpart_p90)) + "," +
+        CsvNumber(c.max_overlap) + "," + (c.MeetsRule() ? "true" : "false") +
+        "," + (k.Label() == report.rule_choice ? "true" : "false") + "\n";
   }
   return csv;
 }
@@ -264,9 +264,9 @@ std::string SummaryMarkdown(const Report& report) {
 
   md +=
       "| | candidate | fitness error median | p90 | trajectory error "
-      "median | p90 | order swaps | ms / eval | CPU ms | failures | front "
-      "| rule |\n";
-  md += "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n";
+      "median | p90 | order swaps | deepest overlap | ms / eval | CPU ms | "
+      "failures | front | rule |\n";
+  md += "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n";
   std::vector<std::string> notes;
   for (const CandidateResult& c : report.candidates) {
     const Candidate& k = c.candidate;
@@ -284,7 +284,7 @@ std::string SummaryMarkdown(const Report& report) {
     }
     md += "| `" + k.Label() + "` | " + k.Name() + mark + " | ";
     if (!Measured(c)) {
-      md += "— | — | — | — | — | — | — | not run | | |\n";
+      md += "— | — | — | — | — | — | — | — | not run | | |\n";
       continue;
     }
     const std::string bold = c.on_front ? "**" : "";
@@ -293,9 +293,10 @@ std::string SummaryMarkdown(const Report& report) {
           Error(c.trajectory_error_median) + " | " +
           Error(c.trajectory_error_p90) + " | " +
           std::to_string(c.order_swaps) + "/" + std::to_string(c.order_pairs) +
-          " | " + bold + Ms(c.ms_median) + bold + " | " + Ms(c.cpu_ms_median) +
-          " | " + std::to_string(c.failures) + " | " +
-          (c.on_front ? "**yes**" : "") + " | " +
+          " | " + Format("%.1f%%", 100 * c.max_overlap) + " | " + bold +
+          Ms(c.ms_median) + bold + " | " + Ms(c.cpu_ms_median) + " | " +
+          std::to_string(c.failures) + " | " + (c.on_front ? "**yes**" : "") +
+          " | " +
           (c.candidate.Label() == report.rule_choice ? "**chosen**"
            : c.MeetsRule()                           ? "meets"
                                                      : "") +
@@ -318,7 +319,10 @@ std::string SummaryMarkdown(const Report& report) {
       "at "
       "most " +
       Format("%g", kRuleP90) +
-      " at the 90th percentile and no pair swapped; the cheapest (median "
+      " at the 90th percentile, no pair swapped, and no animat's deepest "
+      "unjoined overlap above " +
+      Format("%.1f%%", 100 * kRuleOverlap) +
+      " (docs/model.md §7.10's bound with its margin); the cheapest (median "
       "ms per evaluation) that meets it is chosen as the default, times "
       "within " +
       Format("%g", kRuleTimeTie * 100) +

@@ -62,19 +62,28 @@ struct CandidateResult {
   // `order_pairs`: what selection would see.
   int order_swaps = 0;
   int order_pairs = 0;
+  // The deepest unjoined overlap (docs/model.md §8.6) over its ok
+  // evaluations, every animat of the set included.
+  double max_overlap = 0.0;
 
   // Measured, every evaluation ok, options in effect: may be on the front.
   bool Eligible() const {
     return error.empty() && !animats.empty() && failures == 0;
   }
   // The accuracy rule for the default integrator (docs/model.md §7.6):
-  // eligible, fitness error at most kRuleP90 at the 90th percentile, and
-  // no pair swapped.
+  // eligible, fitness error at most kRuleP90 at the 90th percentile, no
+  // pair swapped, and no two unjoined cells of any animat overlapping by
+  // more than kRuleOverlap (the default must hold the contact stiffness's
+  // bound, §7.10, as well as the stiffness chosen under it).
   bool MeetsRule() const;
 };
 
 // The 90th-percentile fitness error the rule allows the default.
 inline constexpr double kRuleP90 = 0.01;
+// The deepest unjoined overlap the default may let through over the set,
+// as a fraction of r_i + r_j: docs/model.md §7.10's bound (10%) with its
+// margin 1.2 for a whole replication.
+inline constexpr double kRuleOverlap = 0.10 / 1.2;
 // An animat's reference has converged when |f_ref - f_check| is at most
 // this fraction of f_check: ten times below the error the rule allows.
 inline constexpr double kConvergenceTolerance = 1e-3;
@@ -84,7 +93,8 @@ inline constexpr double kConvergenceTolerance = 1e-3;
 inline constexpr double kRuleTimeTie = 0.05;
 
 inline bool CandidateResult::MeetsRule() const {
-  return Eligible() && fitness_error_p90 <= kRuleP90 && order_swaps == 0;
+  return Eligible() && fitness_error_p90 <= kRuleP90 && order_swaps == 0 &&
+         max_overlap <= kRuleOverlap;
 }
 
 // Divergence of two runs whose dt differs by one ulp.

@@ -476,6 +476,38 @@ TEST(RuleTest, CheapestCandidateWithinOnePercentAndNoSwapIsChosen) {
   EXPECT_NE(md.find("| **chosen** |"), std::string::npos);
 }
 
+TEST(RuleTest, TheDefaultMustHoldTheContactBound) {
+  std::vector<CandidateResult> set = {
+      Measured("VELOCITY_VERLET", 3, 20.0, 0.009, 0),
+      Measured("VELOCITY_VERLET", 4, 26.0, 0.003, 0),
+  };
+  // Within the error clauses, one animat's cells overlap by 10.5%.
+  set[0].max_overlap = 0.105;
+  set[1].max_overlap = 0.082;
+  EXPECT_FALSE(set[0].MeetsRule());
+  EXPECT_TRUE(set[1].MeetsRule());
+  EXPECT_EQ(RuleChoice(set), "V4f");
+  // The bound is 10% / 1.2, inclusive.
+  set[0].max_overlap = kRuleOverlap;
+  EXPECT_TRUE(set[0].MeetsRule());
+  EXPECT_EQ(RuleChoice(set), "V3f");
+  set[0].max_overlap = std::nextafter(kRuleOverlap, 1.0);
+  EXPECT_FALSE(set[0].MeetsRule());
+
+  // Summarise takes the deepest over the ok evaluations only.
+  CandidateResult c = Measured("VELOCITY_VERLET", 4, 26.0, 0.003, 0);
+  c.animats.resize(2);
+  c.animats[0].status = "ok";
+  c.animats[0].max_overlap = 0.05;
+  c.animats[1].status = "ok";
+  c.animats[1].max_overlap = 0.07;
+  Summarise(&c);
+  EXPECT_EQ(c.max_overlap, 0.07);
+  c.animats[1].status = "unstable";
+  Summarise(&c);
+  EXPECT_EQ(c.max_overlap, 0.05);
+}
+
 // A temporary folder with one genome (the test data's sample) and, when
 // `model` is not empty, its model file.
 std::string SetWithModelFile(const std::string& model) {
