@@ -62,7 +62,7 @@ struct PhysicsParams {
   // k_c (force per radius of overlap) and gamma_c (force per unit approach
   // speed) of the native backend's contacts; Bullet's world uses its own
   // contact solver.
-  double contact_stiffness = 1500.0;  // Chosen by measurement, §7.10.
+  double contact_stiffness = 3000.0;  // Chosen by measurement, §7.10.
   double contact_damping = 0.5;
 };
 

@@ -75,6 +75,13 @@ struct GoldenV3 {
 };
 class GoldenV3FirstTest : public ::testing::TestWithParam<GoldenV3> {};
 
+// Model v3 as set on 2026-11-28, the default until a 250-generation run
+// pressed cells deeper than its contacts held: k_c 1500 and velocity
+// Verlet with four sub-steps. Recorded when it became the default, pinned
+// here so that runs made under it (the first main runs of the third
+// replication) stay reproducible.
+class GoldenV3K1500Test : public ::testing::TestWithParam<GoldenV3> {};
+
 // The default configuration of model v3: contacts between unjoined cells at
 // the stiffness chosen over the accuracy set's animats that press hardest
 // (model §7.10) and the integrator the accuracy rule chose with it (model
@@ -144,6 +151,16 @@ TEST_P(GoldenV3FirstTest, FitnessBitsAndFinalStateAreFixed) {
   ExpectGoldenV3(GetParam(), config);
 }
 
+TEST_P(GoldenV3K1500Test, FitnessBitsAndFinalStateAreFixed) {
+  ModelConfig config;
+  config.physics.contact_rule = ContactRule::kUnjoined;
+  config.physics.contact_stiffness = 1500;
+  config.physics.contact_damping = 0.5;
+  config.physics.integrator = Integrator::kVelocityVerlet;
+  config.physics.substeps = 4;
+  ExpectGoldenV3(GetParam(), config);
+}
+
 TEST_P(GoldenDefaultTest, FitnessBitsAndFinalStateAreFixed) {
   ExpectGoldenV3(GetParam(), ModelConfig());
 }
@@ -187,13 +204,29 @@ INSTANTIATE_TEST_SUITE_P(
                                0}));
 
 INSTANTIATE_TEST_SUITE_P(
-    Genomes, GoldenDefaultTest,
+    Genomes, GoldenV3K1500Test,
     ::testing::Values(GoldenV3{{"seed-1198.json", Precision::kFloat,
                                 0x3fbfb20b14242186ull, 0x169cd337dc7e33e7ull},
                                0x3f2bbbc081390000ull},
                       GoldenV3{{"seed-1198.json", Precision::kDouble,
                                 0x3fbfa8045bed3c4dull, 0xcd8c372596327d39ull},
                                0x3f242883ab382000ull},
+                      // No two unjoined cells ever overlap.
+                      GoldenV3{{"seed-139.json", Precision::kFloat,
+                                0x3e241f6c799ebe9aull, 0x0045668f82fd1081ull},
+                               0},
+                      GoldenV3{{"seed-139.json", Precision::kDouble,
+                                0x3e242f7d6af27d00ull, 0x2d2deefe0010587eull},
+                               0}));
+
+INSTANTIATE_TEST_SUITE_P(
+    Genomes, GoldenDefaultTest,
+    ::testing::Values(GoldenV3{{"seed-1198.json", Precision::kFloat,
+                                0x3fbfb5e81220591eull, 0x383e247911934224ull},
+                               0x3f23b214d9e8d000ull},
+                      GoldenV3{{"seed-1198.json", Precision::kDouble,
+                                0x3fbfa32d497883dcull, 0x3bad6af2de5dbaf3ull},
+                               0x3f22825c8b02d000ull},
                       // No two unjoined cells ever overlap.
                       GoldenV3{{"seed-139.json", Precision::kFloat,
                                 0x3e241f6c799ebe9aull, 0x0045668f82fd1081ull},
