@@ -11,7 +11,7 @@ only finds the bests and tabulates, as a table (Markdown) and the numbers
   model v3   the best of each run given with --db: a lineage store (its
              best individual, the run's own configuration) or a run
              record's folder (scripts/run_record.py; its best's genome and
-             model files), e.g. docs/results/runs/v3-dn0.1-seed1.
+             model files), e.g. docs/results/runs/v3k1500-dn0.1-seed1.
 
 With --kernel-lengths 3,1.5,1 it also prints, for each v2 best's body
 (its rest positions, from `animat simulate --trace`), the cells' mean and
