@@ -27,6 +27,9 @@ struct Candidate {
   // physics.contact_near (n) for contact sub-steps; written only with
   // contact_substeps > 0.
   double contact_near = PhysicsParams{}.contact_near;
+  // Contact sub-steps within each sub-step, the other forces once
+  // (physics.contact_inner_substeps; 0: none).
+  int contact_inner_substeps = 0;
   // physics.contact_stiffness (k_c); negative: the model's default, not
   // written. A whole report runs at one k_c, so it is not in the label.
   double contact_stiffness = -1.0;
@@ -37,8 +40,9 @@ struct Candidate {
   // Compact label for plots: integrator letter (E semi-implicit Euler,
   // V velocity Verlet, R RK4, S SSPRK3, L Ralston's third order, B Bullet),
   // sub-steps, "c" and the sub-steps near contacts when they differ,
-  // "s" for the stable drag update, "f" for float network arithmetic:
-  // "E1", "R4s", "B2f", "V2c4f".
+  // "i" and the contacts' inner sub-steps when they have them, "s" for the
+  // stable drag update, "f" for float network arithmetic: "E1", "R4s", "B2f",
+  // "V2c4f".
   std::string Label() const;
   // Readable name: "euler ×1, explicit, double" ("bullet euler ×2, ...",
   // "verlet ×2 (×4 within n 0.1 of a contact), explicit, float").
@@ -62,7 +66,9 @@ Candidate DefaultCandidate();
 // stable} x precision {double, float} for Euler, Verlet and RK4; the two
 // third-order schemes with sub-steps {1, 2}, explicit drag, both
 // precisions; velocity Verlet with 3 sub-steps, and with 1 or 2 sub-steps
-// but 4 in steps near a contact, explicit drag, both precisions; then the
+// but 4 in steps near a contact, explicit drag, both precisions; velocity
+// Verlet with (sub-steps, contact inner sub-steps) (1, 4), (2, 2), (2, 3),
+// (2, 4), explicit drag, both precisions; then the
 // Bullet backend (semi-implicit Euler, 1 and 2 sub-steps, explicit drag, both
 // precisions).
 std::vector<Candidate> CandidateSet();

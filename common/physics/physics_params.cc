@@ -43,6 +43,10 @@ constexpr ParamRow<PhysicsParams> kRows[] = {
      "always); NATIVE only"},
     {"contact_near", &PhysicsParams::contact_near, ParamRange::NonNegative(),
      "a contact is near within (1 + this) (r_i + r_j)"},
+    {"contact_inner_substeps", &PhysicsParams::contact_inner_substeps,
+     ParamRange::Closed(0, 1024),
+     "contact sub-steps within each sub-step, the other forces once "
+     "(0: every force once per sub-step); VELOCITY_VERLET only"},
 };
 
 // "rk4" -> "RK4": the enum value's name in config files.
@@ -172,6 +176,17 @@ Status PhysicsParamsFromProto(const v1::PhysicsConfig& m,
                 "physics.integrator: the BULLET backend integrates with "
                 "semi-implicit Euler only, got " +
                 UpperCase(IntegratorName(p.integrator)))
+          : Status::Ok(),
+      p.contact_inner_substeps > 0 &&
+              p.integrator != Integrator::kVelocityVerlet
+          ? Status::InvalidArgument(
+                "physics.contact_inner_substeps: only VELOCITY_VERLET "
+                "integrates contacts in inner sub-steps, got " +
+                UpperCase(IntegratorName(p.integrator)))
+          : Status::Ok(),
+      p.contact_inner_substeps > 0 && p.contact_substeps > 0
+          ? Status::InvalidArgument("physics.contact_inner_substeps: not with "
+                                    "physics.contact_substeps (choose one)")
           : Status::Ok(),
       p.backend == PhysicsBackend::kBullet &&
               p.drag_update != DragUpdate::kExplicit

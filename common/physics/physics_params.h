@@ -46,9 +46,9 @@ struct PhysicsParams {
   double dt = 0.05;                // Time per simulation step.
   double actuation_max = 0.2;      // A_max, in [0, 0.5).
   double min_rest_fraction = 0.1;  // Rest length never below this * L0.
-  // Velocity Verlet with two sub-steps: the cheapest setting that meets
-  // model §7.6's accuracy rule with contacts (model v3; docs/accuracy.md,
-  // docs/model.md §11.4).
+  // Velocity Verlet with four sub-steps: the cheapest setting that meets
+  // model §7.6's accuracy rule with contacts at k_c 3000 (model v3;
+  // docs/accuracy.md, docs/model.md §11.4).
   Integrator integrator = Integrator::kVelocityVerlet;
   int substeps = 4;  // Physics sub-steps per simulation step.
   // Sub-steps instead of `substeps` in a step that starts with an admitted
@@ -56,6 +56,10 @@ struct PhysicsParams {
   // (0: `substeps` in every step). NATIVE with contacts only (model §7.6).
   int contact_substeps = 0;
   double contact_near = 0.1;
+  // Velocity Verlet only: contacts integrated in this many inner sub-steps
+  // of each sub-step, the other forces once per sub-step (impulse
+  // multiple time stepping, model §7.6); 0: every force once per sub-step.
+  int contact_inner_substeps = 0;
   DragUpdate drag_update = DragUpdate::kExplicit;
   PhysicsBackend backend = PhysicsBackend::kNative;
   ContactRule contact_rule = ContactRule::kUnjoined;

@@ -206,7 +206,11 @@ void SoftBody::Step(MotionState* state) {
         EulerStep(h, !stable, state);
         break;
       case Integrator::kVelocityVerlet:
-        VerletStep(h, !stable, state);
+        if (params_.contact_inner_substeps > 0) {
+          VerletMtsStep(h, params_.contact_inner_substeps, !stable, state);
+        } else {
+          VerletStep(h, !stable, state);
+        }
         break;
       case Integrator::kRk4:
         Rk4Step(h, !stable, state);
@@ -264,7 +268,7 @@ void SoftBody::Measure(const std::vector<Vec2>& position,
 
 void SoftBody::AccelerationFrom(const Geometry& geometry,
                                 const MotionState& state, bool drag,
-                                std::vector<Vec2>* out) {
+                                bool contacts, std::vector<Vec2>* out) {
   std::vector<Vec2>& force = *out;
   force = geometry.pressure;
   const Vec2* v = state.velocity.data();
@@ -312,19 +316,24 @@ void SoftBody::AccelerationFrom(const Geometry& geometry,
       force[b] += half;
     }
   }
-  AddContactForces(state, force.data());
+  if (contacts) AddContactForces(state, force.data());
   DivideByMass(out);
 }
 
-void SoftBody::VerletStep(double h, bool drag, MotionState* state) {
+void SoftBody::ContactAcceleration(const MotionState& state,
+                                   std::vector<Vec2>* out) {
+  out->assign(nodes_, Vec2{});
+  AddContactForces(state, out->data());
+  DivideByMass(out);
+}
+
+void SoftBody::PrepareVerletStep(const MotionState& state) {
   const size_t bytes = static_cast<size_t>(nodes_) * sizeof(Vec2);
-  if (measured_position_.size() != state->position.size() ||
-      std::memcmp(measured_position_.data(), state->position.data(), bytes) !=
+  if (measured_position_.size() != state.position.size() ||
+      std::memcmp(measured_position_.data(), state.position.data(), bytes) !=
           0) {
-    Measure(state->position, &geometry_);
+    Measure(state.position, &geometry_);
   }
-  std::vector<Vec2>& a0 = k_[0];
-  std::vector<Vec2>& a1 = k_[1];
   if (work_pending_) {
     // The work at the step's start, from its measured spring lengths, in
     // AddSprings' order and arithmetic.
@@ -337,7 +346,13 @@ void SoftBody::VerletStep(double h, bool drag, MotionState* state) {
     work_ += work;
     work_pending_ = false;
   }
-  AccelerationFrom(geometry_, *state, drag, &a0);
+}
+
+void SoftBody::VerletStep(double h, bool drag, MotionState* state) {
+  PrepareVerletStep(*state);
+  std::vector<Vec2>& a0 = k_[0];
+  std::vector<Vec2>& a1 = k_[1];
+  AccelerationFrom(geometry_, *state, drag, /*contacts=*/true, &a0);
   stage_.position.resize(nodes_);
   stage_.velocity.resize(nodes_);
   const double half_h2 = 0.5 * h * h;
@@ -347,7 +362,7 @@ void SoftBody::VerletStep(double h, bool drag, MotionState* state) {
     stage_.velocity[i] = state->velocity[i] + a0[i] * h;
   }
   Measure(stage_.position, &next_geometry_);
-  AccelerationFrom(next_geometry_, stage_, drag, &a1);
+  AccelerationFrom(next_geometry_, stage_, drag, /*contacts=*/true, &a1);
   const double half_h = 0.5 * h;
   for (int i = 0; i < nodes_; ++i) {
     state->position[i] = stage_.position[i];
@@ -355,6 +370,53 @@ void SoftBody::VerletStep(double h, bool drag, MotionState* state) {
   }
   std::swap(geometry_, next_geometry_);
   measured_position_ = state->position;
+}
+
+void SoftBody::VerletMtsStep(double h, int inner, bool drag,
+                             MotionState* state) {
+  PrepareVerletStep(*state);
+  std::vector<Vec2>& a0 = k_[0];
+  std::vector<Vec2>& a1 = k_[1];
+  // The slow forces' half kick.
+  AccelerationFrom(geometry_, *state, drag, /*contacts=*/false, &a0);
+  const double half_h = 0.5 * h;
+  for (int i = 0; i < nodes_; ++i) state->velocity[i] += a0[i] * half_h;
+  // The contacts alone, by velocity Verlet in `inner` sub-steps of h.
+  ContactSubsteps(h / inner, inner, state);
+  // The slow forces at the new positions, with the end velocity predicted
+  // from the first half kick (as VerletStep predicts v + a0 h), then their
+  // second half kick.
+  Measure(state->position, &next_geometry_);
+  stage_.velocity.resize(nodes_);
+  for (int i = 0; i < nodes_; ++i) {
+    stage_.velocity[i] = state->velocity[i] + a0[i] * half_h;
+  }
+  AccelerationFrom(next_geometry_, stage_, drag, /*contacts=*/false, &a1);
+  for (int i = 0; i < nodes_; ++i) state->velocity[i] += a1[i] * half_h;
+  std::swap(geometry_, next_geometry_);
+  measured_position_ = state->position;
+}
+
+void SoftBody::ContactSubsteps(double h, int n, MotionState* state) {
+  std::vector<Vec2>& c0 = k_[2];
+  std::vector<Vec2>& c1 = k_[3];
+  inner_.position.resize(nodes_);
+  inner_.velocity.resize(nodes_);
+  const double half_h2 = 0.5 * h * h;
+  const double half_h = 0.5 * h;
+  for (int j = 0; j < n; ++j) {
+    ContactAcceleration(*state, &c0);
+    for (int i = 0; i < nodes_; ++i) {
+      inner_.position[i] =
+          state->position[i] + state->velocity[i] * h + c0[i] * half_h2;
+      inner_.velocity[i] = state->velocity[i] + c0[i] * h;
+    }
+    ContactAcceleration(inner_, &c1);
+    for (int i = 0; i < nodes_; ++i) {
+      state->position[i] = inner_.position[i];
+      state->velocity[i] += (c0[i] + c1[i]) * half_h;
+    }
+  }
 }
 
 void SoftBody::Rk4Step(double h, bool drag, MotionState* state) {

@@ -102,6 +102,11 @@ class SoftBody : public MotionStepper {
   //     the next sub-step's a0 as long as the positions are unchanged bit
   //     for bit, so each sub-step measures the geometry once; only the
   //     velocity-dependent terms and the rest lengths are evaluated twice;
+  //   velocity Verlet with contact_inner_substeps n > 0 (impulse multiple
+  //     time stepping): a0 = S(x, v) / m of the forces but contacts;
+  //     v <- v + a0 h / 2; then n velocity Verlet sub-steps of h / n under
+  //     the contacts alone; a1 = S(x', v + a0 h / 2) / m with the velocity
+  //     after them; v <- v + a1 h / 2;
   //   RK4: the classical fourth-order Runge-Kutta on (x, v);
   //   SSPRK3, RALSTON3: three-stage third-order Runge-Kutta on (x, v)
   //     (Rk3Tableau below), three force evaluations.
@@ -142,6 +147,14 @@ class SoftBody : public MotionStepper {
   // One sub-step of h; `drag` says whether drag is among the forces.
   void EulerStep(double h, bool drag, MotionState* state);
   void VerletStep(double h, bool drag, MotionState* state);
+  // Velocity Verlet's sub-step with the contacts integrated apart, in
+  // `inner` sub-steps of h / inner (Step's comment).
+  void VerletMtsStep(double h, int inner, bool drag, MotionState* state);
+  // The contacts alone over n velocity Verlet sub-steps of h.
+  void ContactSubsteps(double h, int n, MotionState* state);
+  // geometry_ <- the geometry of state's positions unless already
+  // measured there; charges the pending actuation work.
+  void PrepareVerletStep(const MotionState& state);
   void Rk4Step(double h, bool drag, MotionState* state);
   void Rk3Step(double h, bool drag, const Rk3Tableau& tableau,
                MotionState* state);
@@ -161,8 +174,11 @@ class SoftBody : public MotionStepper {
   // out <- F / m from the geometry of `state`'s positions, its velocities
   // and the current rest lengths: pressure, then springs, then drag, then
   // contacts, each in index order.
+  // Without `contacts`, the positions of `state` are not read.
   void AccelerationFrom(const Geometry& geometry, const MotionState& state,
-                        bool drag, std::vector<Vec2>* out);
+                        bool drag, bool contacts, std::vector<Vec2>* out);
+  // out <- the contact forces alone at `state`, over the mass.
+  void ContactAcceleration(const MotionState& state, std::vector<Vec2>* out);
   // F <- F / m, node by node.
   void DivideByMass(std::vector<Vec2>* force) const;
   // force_ <- acceleration F / m at `state`.
@@ -172,6 +188,7 @@ class SoftBody : public MotionStepper {
   // Scratch, kept between steps to avoid allocation.
   std::vector<Vec2> force_;
   MotionState stage_;
+  MotionState inner_;  // Contact sub-steps' stage.
   std::vector<Vec2> k_[8];
   std::vector<double> drag_matrix_;  // 3 per node: a11, a12, a22.
   // Velocity Verlet: the geometry of the positions the last sub-step left,

@@ -205,9 +205,11 @@ TEST(CandidatesTest, SetCoversEveryCombinationWithUniqueLabels) {
   const std::vector<Candidate> set = CandidateSet();
   // Euler, Verlet, RK4 x {1, 2, 4} x {explicit, stable} x {double, float};
   // Verlet x 3, explicit, x {double, float}; Verlet x 1 with 4 near
-  // contacts and x 2 with 3 or 4, x {double, float}; SSPRK3, Ralston's x
-  // {1, 2} x {double, float}; Bullet x {1, 2} x {double, float}.
-  EXPECT_EQ(set.size(), 3u * 3 * 2 * 2 + 2 + 3 * 2 + 2 * 2 * 2 + 4);
+  // contacts and x 2 with 3 or 4, x {double, float}; Verlet with contacts
+  // in inner sub-steps, (1, 4), (2, 2), (2, 3), (2, 4) x {double, float};
+  // SSPRK3, Ralston's x {1, 2} x {double, float}; Bullet x {1, 2} x
+  // {double, float}.
+  EXPECT_EQ(set.size(), 3u * 3 * 2 * 2 + 2 + 3 * 2 + 4 * 2 + 2 * 2 * 2 + 4);
   std::set<std::string> labels;
   for (const Candidate& c : set) labels.insert(c.Label());
   EXPECT_EQ(labels.size(), set.size());
@@ -275,6 +277,24 @@ TEST(CandidatesTest, ContactSubstepsAreWrittenAndLabelled) {
   Result<ModelConfig> config = CandidateConfig(wider);
   ASSERT_TRUE(config.ok()) << config.status().message();
   EXPECT_EQ(config->physics.contact_near, 0.25);
+}
+
+TEST(CandidatesTest, ContactInnerSubstepsAreWrittenAndLabelled) {
+  Result<std::vector<Candidate>> some =
+      SelectCandidates({"V1i4", "V2f", "V2i3f"});
+  ASSERT_TRUE(some.ok()) << some.status().message();
+  ASSERT_EQ(some->size(), 3u);
+  const int expected[][2] = {{2, 0}, {1, 4}, {2, 3}};  // The set's order.
+  for (size_t k = 0; k < some->size(); ++k) {
+    const Candidate& c = (*some)[k];
+    Result<ModelConfig> config = CandidateConfig(c);
+    ASSERT_TRUE(config.ok()) << c.Label() << ": " << config.status().message();
+    EXPECT_EQ(config->physics.substeps, expected[k][0]) << c.Label();
+    EXPECT_EQ(config->physics.contact_inner_substeps, expected[k][1])
+        << c.Label();
+  }
+  EXPECT_EQ((*some)[2].Name(),
+            "verlet ×2 (contacts ×3 within each), explicit, float");
 }
 
 TEST(CandidatesTest, ContactStiffnessIsWrittenOnlyWhenAsked) {
