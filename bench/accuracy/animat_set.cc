@@ -23,10 +23,12 @@ Status CheckModelText(const std::string& path, const std::string& text) {
                          : p.has_substeps()         ? "physics.substeps"
                          : p.has_contact_substeps() ? "physics.contact_substeps"
                          : p.has_contact_near()     ? "physics.contact_near"
-                         : p.has_drag_update()      ? "physics.drag_update"
-                         : p.has_backend()          ? "physics.backend"
-                         : p.has_contacts()         ? "physics.contacts"
-                         : p.has_contact_rule()     ? "physics.contact_rule"
+                         : p.has_contact_inner_substeps()
+                             ? "physics.contact_inner_substeps"
+                         : p.has_drag_update()  ? "physics.drag_update"
+                         : p.has_backend()      ? "physics.backend"
+                         : p.has_contacts()     ? "physics.contacts"
+                         : p.has_contact_rule() ? "physics.contact_rule"
                          : message.grn().has_precision() ? "grn.precision"
                                                          : nullptr;
   if (compared != nullptr) {

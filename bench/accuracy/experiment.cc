@@ -92,6 +92,7 @@ int Counterpart(const std::vector<CandidateResult>& all, const Candidate& c) {
             : o.backend == c.backend && o.precision == "DOUBLE";
     if (other_options && o.integrator == c.integrator &&
         o.substeps == c.substeps && o.contact_substeps == c.contact_substeps &&
+        o.contact_inner_substeps == c.contact_inner_substeps &&
         o.drag_update == c.drag_update) {
       return static_cast<int>(i);
     }

@@ -114,8 +114,8 @@ std::string CsvField(const std::string& text) {
 
 std::string AccuracyCsv(const Report& report) {
   std::string csv =
-      "candidate,integrator,substeps,contact_substeps,drag_update,precision,"
-      "backend,animat,"
+      "candidate,integrator,substeps,contact_substeps,contact_inner_substeps,"
+      "drag_update,precision,backend,animat,"
       "kind,status,reason,fitness,reference_fitness,fitness_error,"
       "trajectory_error,ms_per_evaluation,cpu_ms_per_evaluation,state_hash,"
       "deterministic,max_overlap,reference_converged\n";
@@ -123,7 +123,8 @@ std::string AccuracyCsv(const Report& report) {
     const Candidate& k = c.candidate;
     const std::string prefix =
         k.Label() + "," + k.integrator + "," + std::to_string(k.substeps) +
-        "," + std::to_string(k.contact_substeps) + "," + k.drag_update + "," +
+        "," + std::to_string(k.contact_substeps) + "," +
+        std::to_string(k.contact_inner_substeps) + "," + k.drag_update + "," +
         k.precision + "," + k.backend + ",";
     if (!Measured(c)) {
       csv += prefix + ",,not_loaded," + CsvField(c.error) + ",,,,,,,,,,\n";
@@ -148,8 +149,8 @@ std::string AccuracyCsv(const Report& report) {
 
 std::string SummaryCsv(const Report& report) {
   std::string csv =
-      "candidate,name,integrator,substeps,contact_substeps,drag_update,"
-      "precision,backend,"
+      "candidate,name,integrator,substeps,contact_substeps,"
+      "contact_inner_substeps,drag_update,precision,backend,"
       "animats,failures,fitness_error_median,fitness_error_p90,"
       "trajectory_error_median,trajectory_error_p90,ms_per_evaluation_median,"
       "cpu_ms_per_evaluation_median,pareto_front,order_swaps,order_pairs,"
@@ -159,8 +160,9 @@ std::string SummaryCsv(const Report& report) {
     const Candidate& k = c.candidate;
     csv += k.Label() + "," + CsvField(k.Name()) + "," + k.integrator + "," +
            std::to_string(k.substeps) + "," +
-           std::to_string(k.contact_substeps) + "," + k.drag_update + "," +
-           k.precision + "," + k.backend + ",";
+           std::to_string(k.contact_substeps) + "," +
+           std::to_string(k.contact_inner_substeps) + "," + k.drag_update +
+           "," + k.precision + "," + k.backend + ",";
     if (!Measured(c)) {
       csv += std::string(",,,,,,,,false,,,") + CsvField(c.error) +
              ",,,,,,false,false\n";

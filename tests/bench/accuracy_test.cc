@@ -611,6 +611,12 @@ TEST(AnimatSetTest, ModelFileMayNotNameWhatTheReportCompares) {
   ASSERT_FALSE(set.ok());
   EXPECT_NE(set.status().message().find("physics.substeps"), std::string::npos)
       << set.status().message();
+  set =
+      LoadAnimatSet(SetWithModelFile("physics { contact_inner_substeps: 2 }"));
+  ASSERT_FALSE(set.ok());
+  EXPECT_NE(set.status().message().find("physics.contact_inner_substeps"),
+            std::string::npos)
+      << set.status().message();
   EXPECT_FALSE(LoadAnimatSet(SetWithModelFile("physics { mass: -1 }")).ok());
 }
 

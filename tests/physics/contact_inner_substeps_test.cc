@@ -60,8 +60,7 @@ Problem Colliding(uint64_t seed, int cells, double speed) {
   return p;
 }
 
-MotionState Simulate(const Problem& p, const PhysicsParams& params,
-                     int steps) {
+MotionState Simulate(const Problem& p, const PhysicsParams& params, int steps) {
   SoftBody body(p.body, params);
   body.SetActuation(p.expand, p.contract);
   MotionState state = p.start;
@@ -112,8 +111,10 @@ TEST(ContactInnerSubstepsTest, ContactsAloneAreVelocityVerletBitForBit) {
       for (int step = 0; step < 300; ++step) {
         a.Step(&x);
         b.Step(&y);
-        ASSERT_EQ(x.position, y.position) << "seed " << seed << " step " << step;
-        ASSERT_EQ(x.velocity, y.velocity) << "seed " << seed << " step " << step;
+        ASSERT_EQ(x.position, y.position)
+            << "seed " << seed << " step " << step;
+        ASSERT_EQ(x.velocity, y.velocity)
+            << "seed " << seed << " step " << step;
         deepest = std::max(deepest, a.DeepestUnjoinedOverlap(x));
       }
       // The contacts acted.
@@ -138,14 +139,12 @@ TEST(ContactInnerSubstepsTest, IsSecondOrderWithoutContacts) {
   const MotionState reference =
       Simulate(p, params(64, 0, Integrator::kRk4), steps);
   for (const int n : {1, 3}) {
-    const double coarse =
-        MaxDistance(Simulate(p, params(2, n, Integrator::kVelocityVerlet),
-                             steps),
-                    reference);
-    const double fine =
-        MaxDistance(Simulate(p, params(4, n, Integrator::kVelocityVerlet),
-                             steps),
-                    reference);
+    const double coarse = MaxDistance(
+        Simulate(p, params(2, n, Integrator::kVelocityVerlet), steps),
+        reference);
+    const double fine = MaxDistance(
+        Simulate(p, params(4, n, Integrator::kVelocityVerlet), steps),
+        reference);
     ASSERT_GT(fine, 0.0);
     EXPECT_GT(coarse / fine, 3.4) << "n " << n;
     EXPECT_LT(coarse / fine, 4.8) << "n " << n;
