@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <random>
 #include <utility>
@@ -65,6 +66,32 @@ inline MotionState AtRest(const Body& body) {
   state.position = body.position;
   state.velocity.assign(body.position.size(), Vec2{});
   return state;
+}
+
+// A body, its starting state and a constant actuation.
+struct Problem {
+  Body body;
+  MotionState start;
+  std::vector<double> expand, contract;
+};
+
+// `steps` simulation steps of `p` under `params`; the final state.
+inline MotionState Simulate(const Problem& p, const PhysicsParams& params,
+                            int steps) {
+  SoftBody body(p.body, params);
+  body.SetActuation(p.expand, p.contract);
+  MotionState state = p.start;
+  for (int s = 0; s < steps; ++s) body.Step(&state);
+  return state;
+}
+
+// The largest distance between a node's positions in a and in b.
+inline double MaxDistance(const MotionState& a, const MotionState& b) {
+  double worst = 0.0;
+  for (size_t i = 0; i < a.position.size(); ++i) {
+    worst = std::max(worst, Length(a.position[i] - b.position[i]));
+  }
+  return worst;
 }
 
 }  // namespace animat::testing

@@ -21,20 +21,17 @@ namespace animat {
 namespace {
 
 using testing::AtRest;
+using testing::MaxDistance;
 using testing::MustBuild;
+using testing::Problem;
 using testing::RandomBody;
+using testing::Simulate;
 using testing::Source;
 
 // A ring of `cells` touching cells (radius 1, neighbours 2 apart: one
 // chamber, unjoined cells apart at rest) falling inward at `speed`, each
 // velocity perturbed by up to half of it, with random constant actuation:
 // it folds, and unjoined cells collide.
-struct Problem {
-  Body body;
-  MotionState start;
-  std::vector<double> expand, contract;
-};
-
 Problem Colliding(uint64_t seed, int cells, double speed) {
   Source source(seed);
   std::vector<Vec2> centres;
@@ -58,22 +55,6 @@ Problem Colliding(uint64_t seed, int cells, double speed) {
     p.contract.push_back(source.Uniform(0, 1));
   }
   return p;
-}
-
-MotionState Simulate(const Problem& p, const PhysicsParams& params, int steps) {
-  SoftBody body(p.body, params);
-  body.SetActuation(p.expand, p.contract);
-  MotionState state = p.start;
-  for (int s = 0; s < steps; ++s) body.Step(&state);
-  return state;
-}
-
-double MaxDistance(const MotionState& a, const MotionState& b) {
-  double worst = 0.0;
-  for (size_t i = 0; i < a.position.size(); ++i) {
-    worst = std::max(worst, Length(a.position[i] - b.position[i]));
-  }
-  return worst;
 }
 
 PhysicsParams Inner(int substeps, int inner) {

@@ -13,8 +13,11 @@ namespace animat {
 namespace {
 
 using testing::AtRest;
+using testing::MaxDistance;
 using testing::MustBuild;
+using testing::Problem;
 using testing::RandomBody;
+using testing::Simulate;
 using testing::Source;
 
 const Integrator kIntegrators[] = {
@@ -23,12 +26,6 @@ const Integrator kIntegrators[] = {
 
 // A deformed, moving random body with constant actuation: a smooth problem
 // (no drag, whose |v| v is only once differentiable at v = 0).
-struct Problem {
-  Body body;
-  MotionState start;
-  std::vector<double> expand, contract;
-};
-
 Problem SmoothProblem(uint64_t seed) {
   Source source(seed);
   Problem p;
@@ -42,23 +39,6 @@ Problem SmoothProblem(uint64_t seed) {
     p.contract.push_back(source.Uniform(0, 1));
   }
   return p;
-}
-
-// Runs `steps` simulation steps and returns the final state.
-MotionState Simulate(const Problem& p, PhysicsParams params, int steps) {
-  SoftBody body(p.body, params);
-  body.SetActuation(p.expand, p.contract);
-  MotionState state = p.start;
-  for (int s = 0; s < steps; ++s) body.Step(&state);
-  return state;
-}
-
-double MaxDistance(const MotionState& a, const MotionState& b) {
-  double worst = 0.0;
-  for (size_t i = 0; i < a.position.size(); ++i) {
-    worst = std::max(worst, Length(a.position[i] - b.position[i]));
-  }
-  return worst;
 }
 
 // Without drag and contacts (whose forces have kinks where a pair starts
