@@ -77,7 +77,7 @@ TEST(ParamTableTest, ThePhysicsTableIsItsMessages) {
   const Status status =
       CheckParamTable<PhysicsParams>(v1::PhysicsConfig(), PhysicsParamTable());
   EXPECT_TRUE(status.ok()) << status.ToString();
-  EXPECT_EQ(PhysicsParamTable().size(), 14u);
+  EXPECT_EQ(PhysicsParamTable().size(), 15u);
   PhysicsParams p;
   p.contact_stiffness = 123.5;
   p.substeps = 7;
