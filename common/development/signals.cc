@@ -38,19 +38,33 @@ MorphogenFieldT<S>::MorphogenFieldT(int morphogens, int capacity,
   const size_t cap = static_cast<size_t>(capacity);
   kernel_.assign(cap * cap, 0.0);
   delay_.assign(cap * cap, 0);
-  history_.assign(kHistory * cap * morphogens, 0.0);
+  source_offset_.assign(cap * cap, 0);
+  history_.assign(kRing * cap * morphogens, 0.0);
   sum_.assign(cap * morphogens, 0.0);
   for (int m = 0; m < morphogens; ++m) keep_.push_back(m);
+  UpdateOffsets();
+}
+
+template <typename S>
+void MorphogenFieldT<S>::UpdateOffsets() {
+  const size_t m = static_cast<size_t>(morphogens_);
+  for (int i = 0; i < capacity_; ++i) {
+    for (int k = 0; k < capacity_; ++k) {
+      const size_t at = static_cast<size_t>(i) * capacity_ + k;
+      source_offset_[at] = static_cast<uint32_t>(
+          static_cast<size_t>(kHistory - delay_[at]) * capacity_ * m);
+    }
+  }
 }
 
 template <typename S>
 void MorphogenFieldT<S>::Restrict(const std::vector<int>& keep) {
   const int kept = static_cast<int>(keep.size());
-  std::vector<S> history(kHistory * static_cast<size_t>(capacity_) * kept);
+  std::vector<S> history(kRing * static_cast<size_t>(capacity_) * kept);
   for (int cell = 0; kept > 0 && cell < cells_; ++cell) {
-    for (int s = 0; s < kHistory; ++s) {
-      const S* from = slot(s, cell);
-      S* to = &history[(static_cast<size_t>(cell) * kHistory + s) * kept];
+    for (int s = 0; s < kRing; ++s) {
+      const S* from = ring_slot(s, cell);
+      S* to = &history[(static_cast<size_t>(s) * capacity_ + cell) * kept];
       // keep[j] indexes the current compacted layout through keep_.
       for (int j = 0; j < kept; ++j) {
         const auto it = std::find(keep_.begin(), keep_.end(), keep[j]);
@@ -61,6 +75,7 @@ void MorphogenFieldT<S>::Restrict(const std::vector<int>& keep) {
   history_ = std::move(history);
   keep_ = keep;
   morphogens_ = kept;
+  UpdateOffsets();
 }
 
 template <typename S>
@@ -78,8 +93,8 @@ void MorphogenFieldT<S>::AddCell() {
   assert(cells_ < capacity_);
   const int cell = cells_++;
   if (morphogens_ == 0) return;  // No history to keep.
-  for (int s = 0; s < kHistory; ++s) {
-    std::fill_n(slot(s, cell), morphogens_, S{0});
+  for (int s = 0; s < kRing; ++s) {
+    std::fill_n(ring_slot(s, cell), morphogens_, S{0});
   }
 }
 
@@ -88,8 +103,8 @@ void MorphogenFieldT<S>::CopyCell(int mother) {
   assert(cells_ < capacity_ && mother >= 0 && mother < cells_);
   const int cell = cells_++;
   if (morphogens_ == 0) return;  // No history to copy.
-  for (int s = 0; s < kHistory; ++s) {
-    std::copy_n(slot(s, mother), morphogens_, slot(s, cell));
+  for (int s = 0; s < kRing; ++s) {
+    std::copy_n(ring_slot(s, mother), morphogens_, ring_slot(s, cell));
   }
 }
 
@@ -117,15 +132,20 @@ void MorphogenFieldT<S>::SetGeometry(std::span<const Vec2> positions) {
   args.kernel = pair_kernel_.data();
   args.delay = pair_delay_.data();
   kernels::PairKernels(args);
+  // Offsets as UpdateOffsets computes them, written with the delays.
+  const uint32_t slot_size = static_cast<uint32_t>(capacity_ * morphogens_);
   size_t p = 0;
   for (int i = 0; i < n; ++i) {
     kernel_[i * capacity_ + i] = S{1};
     delay_[i * capacity_ + i] = 0;
+    source_offset_[i * capacity_ + i] = kHistory * slot_size;
     for (int k = i + 1; k < n; ++k, ++p) {
       kernel_[i * capacity_ + k] = kernel_[k * capacity_ + i] =
           static_cast<S>(pair_kernel_[p]);
-      delay_[i * capacity_ + k] = delay_[k * capacity_ + i] =
-          static_cast<uint8_t>(pair_delay_[p]);
+      const uint8_t delay = static_cast<uint8_t>(pair_delay_[p]);
+      delay_[i * capacity_ + k] = delay_[k * capacity_ + i] = delay;
+      source_offset_[i * capacity_ + k] = source_offset_[k * capacity_ + i] =
+          (kHistory - delay) * slot_size;
     }
   }
 }
@@ -136,7 +156,10 @@ void MorphogenFieldT<S>::Record(int step, const GrnBatchT<S>& grn) {
   for (int m = 0; m < morphogens_; ++m) {
     const S* level = grn.level_row(nodes[keep_[m]]);
     for (int cell = 0; cell < cells_; ++cell) {
-      slot(step, cell)[m] = level[cell];
+      S* at = slot(step, cell);
+      at[m] = level[cell];
+      at[static_cast<size_t>(kHistory) * capacity_ * morphogens_ + m] =
+          level[cell];
     }
   }
 }
@@ -145,19 +168,15 @@ namespace {
 
 // M_j(i) for every cell i: sums over source cells k in increasing order.
 // kM > 0 fixes the morphogen count at compile time (sums in registers,
-// vectorised); kM == 0 handles any count.
+// vectorised); kM == 0 handles any count. `now` is the history's first
+// copy of the slot of `step`, whose cell k's values are at now + k * m;
+// cell i reads cell k's at now + k * m + offset[i][k]. Kernels and offsets
+// are symmetric, so row k holds what cells i, i + 1, ... read from k, side
+// by side.
 template <int kM, typename S>
-void ApplyKernel(int step, int n, int m_count, int capacity, const S* kernel,
-                 const uint8_t* delay, const S* history, S* out) {
-  constexpr int kHistory = MorphogenFieldT<S>::kHistory;
+void ApplyKernel(int n, int m_count, int capacity, const S* kernel,
+                 const uint32_t* offset, const S* now, S* out) {
   if constexpr (kM > 0) m_count = kM;
-  // Offset in a cell's ring of the values entering step - d, for every
-  // delay d: one table per step instead of index arithmetic per pair.
-  uint32_t offset[kHistory];
-  for (int d = 0; d < kHistory; ++d) {
-    offset[d] = static_cast<uint32_t>(((step - d) & (kHistory - 1)) * m_count);
-  }
-  const size_t ring = static_cast<size_t>(kHistory) * m_count;
   int i = 0;
   if constexpr (kM > 0) {
     // Four receiving cells at once: four independent chains of additions
@@ -166,18 +185,14 @@ void ApplyKernel(int step, int n, int m_count, int capacity, const S* kernel,
     constexpr int kBlock = 4;
     for (; i + kBlock <= n; i += kBlock) {
       S sum[kBlock][kM] = {};
-      const S* kernel_row[kBlock];
-      const uint8_t* delay_row[kBlock];
-      for (int r = 0; r < kBlock; ++r) {
-        kernel_row[r] = &kernel[static_cast<size_t>(i + r) * capacity];
-        delay_row[r] = &delay[static_cast<size_t>(i + r) * capacity];
-      }
-      const S* ring_k = history;
-      for (int k = 0; k < n; ++k, ring_k += ring) {
+      const S* now_k = now;
+      for (int k = 0; k < n; ++k, now_k += kM) {
+        const size_t row = static_cast<size_t>(k) * capacity + i;
+        const S* w = &kernel[row];
+        const uint32_t* o = &offset[row];
         for (int r = 0; r < kBlock; ++r) {
-          const S w = kernel_row[r][k];
-          const S* h = ring_k + offset[delay_row[r][k]];
-          for (int m = 0; m < kM; ++m) sum[r][m] += w * h[m];
+          const S* h = now_k + o[r];
+          for (int m = 0; m < kM; ++m) sum[r][m] += w[r] * h[m];
         }
       }
       for (int r = 0; r < kBlock; ++r) {
@@ -192,11 +207,11 @@ void ApplyKernel(int step, int n, int m_count, int capacity, const S* kernel,
     S* acc = kM > 0 ? sum : &out[static_cast<size_t>(i) * m_count];
     if constexpr (kM == 0) std::fill_n(acc, m_count, S{0});
     const S* kernel_row = &kernel[static_cast<size_t>(i) * capacity];
-    const uint8_t* delay_row = &delay[static_cast<size_t>(i) * capacity];
-    const S* ring_k = history;
-    for (int k = 0; k < n; ++k, ring_k += ring) {
+    const uint32_t* offset_row = &offset[static_cast<size_t>(i) * capacity];
+    const S* now_k = now;
+    for (int k = 0; k < n; ++k, now_k += m_count) {
       const S w = kernel_row[k];
-      const S* h = ring_k + offset[delay_row[k]];
+      const S* h = now_k + offset_row[k];
       for (int m = 0; m < m_count; ++m) acc[m] += w * h[m];
     }
     if constexpr (kM > 0) {
@@ -215,13 +230,13 @@ void MorphogenFieldT<S>::Apply(int step, GrnBatchT<S>* grn) const {
   const int m_count = morphogens_;
   S* sum = sum_.data();
   const S* kernel = kernel_.data();
-  const uint8_t* delay = delay_.data();
-  const S* history = history_.data();
+  const uint32_t* offset = source_offset_.data();
+  const S* now = history_.data() + static_cast<size_t>(step & (kHistory - 1)) *
+                                       capacity_ * m_count;
   switch (m_count) {
-#define ANIMAT_APPLY_CASE(M)                                               \
-  case M:                                                                  \
-    ApplyKernel<M, S>(step, n, m_count, capacity_, kernel, delay, history, \
-                      sum);                                                \
+#define ANIMAT_APPLY_CASE(M)                                            \
+  case M:                                                               \
+    ApplyKernel<M, S>(n, m_count, capacity_, kernel, offset, now, sum); \
     break;
     ANIMAT_APPLY_CASE(1)
     ANIMAT_APPLY_CASE(2)
@@ -233,7 +248,7 @@ void MorphogenFieldT<S>::Apply(int step, GrnBatchT<S>* grn) const {
     ANIMAT_APPLY_CASE(8)
 #undef ANIMAT_APPLY_CASE
     default:
-      ApplyKernel<0>(step, n, m_count, capacity_, kernel, delay, history, sum);
+      ApplyKernel<0>(n, m_count, capacity_, kernel, offset, now, sum);
       break;
   }
   for (int m = 0; m < m_count; ++m) {

@@ -82,13 +82,24 @@ class MorphogenFieldT {
   int delay(int i, int k) const { return delay_[i * capacity_ + k]; }
 
  private:
-  // The cell's values entering `step` (any integer; the ring wraps).
-  // Precondition: morphogens_ > 0.
-  S* slot(int step, int cell) {
-    return &history_[(static_cast<size_t>(cell) * kHistory +
-                      (static_cast<size_t>(step) & (kHistory - 1))) *
-                     morphogens_];
+  // Each cell's ring holds every value twice, at slot s and s + kHistory
+  // (s = step mod kHistory), so that the values entering step - d, for
+  // any delay d in [0, kHistory), sit at slot (step mod kHistory) +
+  // kHistory - d without a wrap: one offset per cell pair, fixed with the
+  // geometry, and one per step.
+  static constexpr int kRing = 2 * kHistory;
+
+  // Slot `s` in [0, kRing) of the cell's ring. Slots are the outer index,
+  // so one step's values of all cells lie together. Precondition:
+  // morphogens_ > 0.
+  S* ring_slot(int s, int cell) {
+    return &history_[(static_cast<size_t>(s) * capacity_ + cell) * morphogens_];
   }
+  // The cell's values entering `step` (any integer), first copy.
+  S* slot(int step, int cell) { return ring_slot(step & (kHistory - 1), cell); }
+
+  // source_offset_ of every pair, from delay_ and the morphogen count.
+  void UpdateOffsets();
 
   int morphogens_;
   int capacity_;
@@ -97,7 +108,12 @@ class MorphogenFieldT {
   std::vector<int> keep_;       // Network morphogen index of each kept one.
   std::vector<S> kernel_;       // capacity x capacity
   std::vector<uint8_t> delay_;  // capacity x capacity
-  std::vector<S> history_;      // [cell][slot][morphogen]
+  std::vector<S> history_;      // [kRing slots][capacity][morphogen]
+  // Where cell i finds cell k's values (i, k < capacity; symmetric): cell
+  // k's values of ring slot kHistory - delay(i, k) are at history_ index
+  // source_offset_[i][k] + k * morphogens, and those entering step s
+  // (s mod kHistory) * capacity * morphogens further on.
+  std::vector<uint32_t> source_offset_;
   mutable std::vector<S> sum_;  // scratch, [cell][morphogen]
   // Scratch for SetGeometry, one entry per pair i < k.
   std::vector<double> pair_distance_, pair_kernel_, pair_delay_;
