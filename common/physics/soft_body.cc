@@ -348,26 +348,43 @@ void SoftBody::PrepareVerletStep(const MotionState& state) {
   }
 }
 
+namespace {
+
+// Velocity Verlet's predictor: stage <- (x + v h + a h^2 / 2, v + a h).
+void VerletPredict(const MotionState& state, const std::vector<Vec2>& a,
+                   double h, MotionState* stage) {
+  const size_t nodes = state.position.size();
+  stage->position.resize(nodes);
+  stage->velocity.resize(nodes);
+  const double half_h2 = 0.5 * h * h;
+  for (size_t i = 0; i < nodes; ++i) {
+    stage->position[i] =
+        state.position[i] + state.velocity[i] * h + a[i] * half_h2;
+    stage->velocity[i] = state.velocity[i] + a[i] * h;
+  }
+}
+
+// Its corrector: x <- the stage's positions, v <- v + (a0 + a1) h / 2.
+void VerletCorrect(const MotionState& stage, const std::vector<Vec2>& a0,
+                   const std::vector<Vec2>& a1, double h, MotionState* state) {
+  const double half_h = 0.5 * h;
+  for (size_t i = 0; i < state->position.size(); ++i) {
+    state->position[i] = stage.position[i];
+    state->velocity[i] += (a0[i] + a1[i]) * half_h;
+  }
+}
+
+}  // namespace
+
 void SoftBody::VerletStep(double h, bool drag, MotionState* state) {
   PrepareVerletStep(*state);
   std::vector<Vec2>& a0 = k_[0];
   std::vector<Vec2>& a1 = k_[1];
   AccelerationFrom(geometry_, *state, drag, /*contacts=*/true, &a0);
-  stage_.position.resize(nodes_);
-  stage_.velocity.resize(nodes_);
-  const double half_h2 = 0.5 * h * h;
-  for (int i = 0; i < nodes_; ++i) {
-    stage_.position[i] =
-        state->position[i] + state->velocity[i] * h + a0[i] * half_h2;
-    stage_.velocity[i] = state->velocity[i] + a0[i] * h;
-  }
+  VerletPredict(*state, a0, h, &stage_);
   Measure(stage_.position, &next_geometry_);
   AccelerationFrom(next_geometry_, stage_, drag, /*contacts=*/true, &a1);
-  const double half_h = 0.5 * h;
-  for (int i = 0; i < nodes_; ++i) {
-    state->position[i] = stage_.position[i];
-    state->velocity[i] += (a0[i] + a1[i]) * half_h;
-  }
+  VerletCorrect(stage_, a0, a1, h, state);
   std::swap(geometry_, next_geometry_);
   measured_position_ = state->position;
 }
@@ -400,22 +417,11 @@ void SoftBody::VerletMtsStep(double h, int inner, bool drag,
 void SoftBody::ContactSubsteps(double h, int n, MotionState* state) {
   std::vector<Vec2>& c0 = k_[2];
   std::vector<Vec2>& c1 = k_[3];
-  inner_.position.resize(nodes_);
-  inner_.velocity.resize(nodes_);
-  const double half_h2 = 0.5 * h * h;
-  const double half_h = 0.5 * h;
   for (int j = 0; j < n; ++j) {
     ContactAcceleration(*state, &c0);
-    for (int i = 0; i < nodes_; ++i) {
-      inner_.position[i] =
-          state->position[i] + state->velocity[i] * h + c0[i] * half_h2;
-      inner_.velocity[i] = state->velocity[i] + c0[i] * h;
-    }
+    VerletPredict(*state, c0, h, &inner_);
     ContactAcceleration(inner_, &c1);
-    for (int i = 0; i < nodes_; ++i) {
-      state->position[i] = inner_.position[i];
-      state->velocity[i] += (c0[i] + c1[i]) * half_h;
-    }
+    VerletCorrect(inner_, c0, c1, h, state);
   }
 }
 

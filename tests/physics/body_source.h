@@ -10,8 +10,11 @@
 #include <utility>
 #include <vector>
 
+#include "animat/v1/config.pb.h"
+#include "common/base/status.h"
 #include "common/base/vec2.h"
 #include "common/body/body.h"
+#include "common/physics/physics_params.h"
 #include "common/physics/soft_body.h"
 
 namespace animat::testing {
@@ -92,6 +95,18 @@ inline double MaxDistance(const MotionState& a, const MotionState& b) {
     worst = std::max(worst, Length(a.position[i] - b.position[i]));
   }
   return worst;
+}
+
+// Expects `bad` to be refused with a message starting with `prefix`, and
+// returns the parameters the refused call was given (default ones), for
+// the caller to check that they were left unchanged.
+inline PhysicsParams ExpectRefused(const v1::PhysicsConfig& bad,
+                                   const char* prefix) {
+  PhysicsParams unchanged;
+  const Status status = PhysicsParamsFromProto(bad, &unchanged);
+  EXPECT_FALSE(status.ok()) << prefix;
+  EXPECT_EQ(status.message().rfind(prefix, 0), 0u) << status.message();
+  return unchanged;
 }
 
 }  // namespace animat::testing
