@@ -269,9 +269,16 @@ void SoftBody::Measure(const std::vector<Vec2>& position,
 void SoftBody::AccelerationFrom(const Geometry& geometry,
                                 const MotionState& state, bool drag,
                                 bool contacts, std::vector<Vec2>* out) {
-  std::vector<Vec2>& force = *out;
-  force = geometry.pressure;
+  *out = geometry.pressure;
+  // Plain pointers, so that the stores into `force` do not make the
+  // compiler load the arrays' addresses again at every spring.
+  Vec2* force = out->data();
   const Vec2* v = state.velocity.data();
+  const int* spring_a = spring_a_.data();
+  const int* spring_b = spring_b_.data();
+  const double* rest = rest_.data();
+  const double* length = geometry.spring_length.data();
+  const Vec2* unit = geometry.spring_unit.data();
   const double k = params_.stiffness;
   const double gamma = params_.damping;
   // Springs sharing their first node follow each other (the body's order):
@@ -279,13 +286,12 @@ void SoftBody::AccelerationFrom(const Geometry& geometry,
   // additions in the same order as one spring at a time.
   const size_t springs = rest_.size();
   for (size_t s = 0; s < springs;) {
-    const int a = spring_a_[s];
+    const int a = spring_a[s];
     Vec2 force_a = force[a];
-    for (; s < springs && spring_a_[s] == a; ++s) {
-      const int b = spring_b_[s];
-      const Vec2 u = geometry.spring_unit[s];
-      const double f = k * (geometry.spring_length[s] - rest_[s]) +
-                       gamma * Dot(v[b] - v[a], u);
+    for (; s < springs && spring_a[s] == a; ++s) {
+      const int b = spring_b[s];
+      const Vec2 u = unit[s];
+      const double f = k * (length[s] - rest[s]) + gamma * Dot(v[b] - v[a], u);
       const Vec2 fa = u * f;
       force_a += fa;
       if (b == a) {
@@ -299,12 +305,17 @@ void SoftBody::AccelerationFrom(const Geometry& geometry,
   if (drag) {
     const double dn = params_.drag_normal;
     const double dt = params_.drag_tangential;
-    for (size_t e = 0; e < skin_a_.size(); ++e) {
-      const double l = geometry.skin_length[e];
+    const int* skin_a = skin_a_.data();
+    const int* skin_b = skin_b_.data();
+    const double* skin_length = geometry.skin_length.data();
+    const Vec2* tangent = geometry.skin_tangent.data();
+    const size_t edges = skin_a_.size();
+    for (size_t e = 0; e < edges; ++e) {
+      const double l = skin_length[e];
       if (!(l > 0.0)) continue;  // No length, no drag.
-      const int a = skin_a_[e];
-      const int b = skin_b_[e];
-      const Vec2 t = geometry.skin_tangent[e];
+      const int a = skin_a[e];
+      const int b = skin_b[e];
+      const Vec2 t = tangent[e];
       const Vec2 n{t.y, -t.x};
       const Vec2 vc = (v[a] + v[b]) * 0.5;
       const double vt = Dot(vc, t);
@@ -316,7 +327,7 @@ void SoftBody::AccelerationFrom(const Geometry& geometry,
       force[b] += half;
     }
   }
-  if (contacts) AddContactForces(state, force.data());
+  if (contacts) AddContactForces(state, force);
   DivideByMass(out);
 }
 
