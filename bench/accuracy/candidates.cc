@@ -175,6 +175,24 @@ std::vector<Candidate> CandidateSet() {
   return set;
 }
 
+int Counterpart(const std::vector<Candidate>& set, const Candidate& c) {
+  if (c.backend != "BULLET" && c.precision != "FLOAT") return -1;
+  for (size_t i = 0; i < set.size(); ++i) {
+    const Candidate& o = set[i];
+    const bool other_options =
+        c.backend == "BULLET"
+            ? o.backend == "NATIVE" && o.precision == c.precision
+            : o.backend == c.backend && o.precision == "DOUBLE";
+    if (other_options && o.integrator == c.integrator &&
+        o.substeps == c.substeps && o.contact_substeps == c.contact_substeps &&
+        o.contact_inner_substeps == c.contact_inner_substeps &&
+        o.drag_update == c.drag_update) {
+      return static_cast<int>(i);
+    }
+  }
+  return -1;
+}
+
 Result<std::vector<Candidate>> SelectCandidates(
     const std::vector<std::string>& labels) {
   const std::vector<Candidate> set = CandidateSet();

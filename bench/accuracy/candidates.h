@@ -73,6 +73,14 @@ Candidate DefaultCandidate();
 // precisions).
 std::vector<Candidate> CandidateSet();
 
+// The index in `set` of the candidate that differs from `c` in one option
+// only, for the float-against-double and Bullet-against-native tables: the
+// native one of the same precision for a Bullet candidate, the double one
+// for a native float one; every other option (integrator, sub-steps,
+// contact sub-steps, inner contact sub-steps, drag update) the same. -1
+// when `c` is neither or its counterpart is not in `set`.
+int Counterpart(const std::vector<Candidate>& set, const Candidate& c);
+
 // The candidates of CandidateSet() with these labels, in the set's order;
 // all of them when `labels` is empty. Fails naming a label that is not in
 // the set.

@@ -80,26 +80,6 @@ ChaosResult Chaos(const std::string& name, const std::vector<Run>& base,
   return chaos;
 }
 
-// The candidate that differs from `c` in one option only: native for a
-// Bullet candidate (same precision), double for a native float one; or -1.
-int Counterpart(const std::vector<CandidateResult>& all, const Candidate& c) {
-  if (c.backend != "BULLET" && c.precision != "FLOAT") return -1;
-  for (size_t i = 0; i < all.size(); ++i) {
-    const Candidate& o = all[i].candidate;
-    const bool other_options =
-        c.backend == "BULLET"
-            ? o.backend == "NATIVE" && o.precision == c.precision
-            : o.backend == c.backend && o.precision == "DOUBLE";
-    if (other_options && o.integrator == c.integrator &&
-        o.substeps == c.substeps && o.contact_substeps == c.contact_substeps &&
-        o.contact_inner_substeps == c.contact_inner_substeps &&
-        o.drag_update == c.drag_update) {
-      return static_cast<int>(i);
-    }
-  }
-  return -1;
-}
-
 // Each animat's configuration: `config` with the animat's model constants.
 Result<std::vector<ModelConfig>> PerAnimat(const ModelConfig& config,
                                            const std::vector<Animat>& animats) {
@@ -411,9 +391,11 @@ Result<Report> RunExperiment(const ExperimentOptions& options) {
   // without it. Float arithmetic that changes no bit is not in effect; the
   // Bullet backend may legitimately give the same bits as native
   // semi-implicit Euler (it performs the same operations).
+  std::vector<Candidate> measured;
+  for (const CandidateResult& r : results) measured.push_back(r.candidate);
   for (size_t c = 0; c < n; ++c) {
     CandidateResult& result = results[loaded_index[c]];
-    const int other = Counterpart(results, result.candidate);
+    const int other = Counterpart(measured, result.candidate);
     if (other < 0 || results[other].animats.empty()) continue;
     size_t other_c = 0;
     while (loaded_index[other_c] != other) ++other_c;

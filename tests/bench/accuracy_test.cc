@@ -297,6 +297,35 @@ TEST(CandidatesTest, ContactInnerSubstepsAreWrittenAndLabelled) {
             "verlet ×2 (contacts ×3 within each), explicit, float");
 }
 
+// Regression: the float-against-double table paired V2i3f with V2, a
+// candidate without the inner contact sub-steps.
+TEST(CandidatesTest, CounterpartDiffersInPrecisionOrBackendAlone) {
+  const std::vector<Candidate> set = CandidateSet();
+  const auto counterpart = [&set](const std::string& label) -> std::string {
+    for (const Candidate& c : set) {
+      if (c.Label() != label) continue;
+      const int i = Counterpart(set, c);
+      return i < 0 ? "none" : set[i].Label();
+    }
+    return "not in the set";
+  };
+  EXPECT_EQ(counterpart("V2f"), "V2");
+  EXPECT_EQ(counterpart("V2i3f"), "V2i3");
+  EXPECT_EQ(counterpart("V2c4f"), "V2c4");
+  EXPECT_EQ(counterpart("R4sf"), "R4s");
+  EXPECT_EQ(counterpart("B2f"), "E2f");  // Bullet: native, same precision.
+  EXPECT_EQ(counterpart("B1"), "E1");
+  // Double native candidates have none; nor has a float one whose double
+  // is not in the set.
+  EXPECT_EQ(counterpart("V2i3"), "none");
+  const std::vector<Candidate> alone = {set[0]};
+  for (const Candidate& c : set) {
+    if (c.Label() == "V4f") {
+      EXPECT_EQ(Counterpart(alone, c), -1);
+    }
+  }
+}
+
 TEST(CandidatesTest, ContactStiffnessIsWrittenOnlyWhenAsked) {
   Candidate c = DefaultCandidate();
   EXPECT_EQ(c.ConfigText().find("contact_stiffness"), std::string::npos);
