@@ -34,20 +34,23 @@ std::array<double, kInputChannels> InputValuesAt(
 template <typename S>
 MorphogenFieldT<S>::MorphogenFieldT(int morphogens, int capacity,
                                     const SignalParams& params)
-    : morphogens_(morphogens), capacity_(capacity), params_(params) {
+    : morphogens_(morphogens),
+      stride_(Stride(morphogens)),
+      capacity_(capacity),
+      params_(params) {
   const size_t cap = static_cast<size_t>(capacity);
   kernel_.assign(cap * cap, 0.0);
   delay_.assign(cap * cap, 0);
   source_offset_.assign(cap * cap, 0);
-  history_.assign(kRing * cap * morphogens, 0.0);
-  sum_.assign(cap * morphogens, 0.0);
+  history_.assign(kRing * cap * stride_, 0.0);
+  sum_.assign(cap * stride_, 0.0);
   for (int m = 0; m < morphogens; ++m) keep_.push_back(m);
   UpdateOffsets();
 }
 
 template <typename S>
 void MorphogenFieldT<S>::UpdateOffsets() {
-  const size_t m = static_cast<size_t>(morphogens_);
+  const size_t m = static_cast<size_t>(stride_);
   for (int i = 0; i < capacity_; ++i) {
     for (int k = 0; k < capacity_; ++k) {
       const size_t at = static_cast<size_t>(i) * capacity_ + k;
@@ -60,11 +63,12 @@ void MorphogenFieldT<S>::UpdateOffsets() {
 template <typename S>
 void MorphogenFieldT<S>::Restrict(const std::vector<int>& keep) {
   const int kept = static_cast<int>(keep.size());
-  std::vector<S> history(kRing * static_cast<size_t>(capacity_) * kept);
+  const int stride = Stride(kept);
+  std::vector<S> history(kRing * static_cast<size_t>(capacity_) * stride);
   for (int cell = 0; kept > 0 && cell < cells_; ++cell) {
     for (int s = 0; s < kRing; ++s) {
       const S* from = ring_slot(s, cell);
-      S* to = &history[(static_cast<size_t>(s) * capacity_ + cell) * kept];
+      S* to = &history[(static_cast<size_t>(s) * capacity_ + cell) * stride];
       // keep[j] indexes the current compacted layout through keep_.
       for (int j = 0; j < kept; ++j) {
         const auto it = std::find(keep_.begin(), keep_.end(), keep[j]);
@@ -75,6 +79,8 @@ void MorphogenFieldT<S>::Restrict(const std::vector<int>& keep) {
   history_ = std::move(history);
   keep_ = keep;
   morphogens_ = kept;
+  stride_ = stride;
+  sum_.assign(static_cast<size_t>(capacity_) * stride_, 0.0);
   UpdateOffsets();
 }
 
@@ -94,7 +100,7 @@ void MorphogenFieldT<S>::AddCell() {
   const int cell = cells_++;
   if (morphogens_ == 0) return;  // No history to keep.
   for (int s = 0; s < kRing; ++s) {
-    std::fill_n(ring_slot(s, cell), morphogens_, S{0});
+    std::fill_n(ring_slot(s, cell), stride_, S{0});
   }
 }
 
@@ -104,7 +110,7 @@ void MorphogenFieldT<S>::CopyCell(int mother) {
   const int cell = cells_++;
   if (morphogens_ == 0) return;  // No history to copy.
   for (int s = 0; s < kRing; ++s) {
-    std::copy_n(ring_slot(s, mother), morphogens_, ring_slot(s, cell));
+    std::copy_n(ring_slot(s, mother), stride_, ring_slot(s, cell));
   }
 }
 
@@ -133,7 +139,7 @@ void MorphogenFieldT<S>::SetGeometry(std::span<const Vec2> positions) {
   args.delay = pair_delay_.data();
   kernels::PairKernels(args);
   // Offsets as UpdateOffsets computes them, written with the delays.
-  const uint32_t slot_size = static_cast<uint32_t>(capacity_ * morphogens_);
+  const uint32_t slot_size = static_cast<uint32_t>(capacity_ * stride_);
   size_t p = 0;
   for (int i = 0; i < n; ++i) {
     kernel_[i * capacity_ + i] = S{1};
@@ -158,8 +164,7 @@ void MorphogenFieldT<S>::Record(int step, const GrnBatchT<S>& grn) {
     for (int cell = 0; cell < cells_; ++cell) {
       S* at = slot(step, cell);
       at[m] = level[cell];
-      at[static_cast<size_t>(kHistory) * capacity_ * morphogens_ + m] =
-          level[cell];
+      at[static_cast<size_t>(kHistory) * capacity_ * stride_ + m] = level[cell];
     }
   }
 }
@@ -228,34 +233,30 @@ template <typename S>
 void MorphogenFieldT<S>::Apply(int step, GrnBatchT<S>* grn) const {
   const int n = cells_;
   const int m_count = morphogens_;
+  const int stride = stride_;
   S* sum = sum_.data();
   const S* kernel = kernel_.data();
   const uint32_t* offset = source_offset_.data();
   const S* now = history_.data() + static_cast<size_t>(step & (kHistory - 1)) *
-                                       capacity_ * m_count;
-  switch (m_count) {
-#define ANIMAT_APPLY_CASE(M)                                            \
-  case M:                                                               \
-    ApplyKernel<M, S>(n, m_count, capacity_, kernel, offset, now, sum); \
+                                       capacity_ * stride;
+  // The padding lanes (stride > m_count) sum zeros and are not read.
+  switch (stride) {
+#define ANIMAT_APPLY_CASE(M)                                           \
+  case M:                                                              \
+    ApplyKernel<M, S>(n, stride, capacity_, kernel, offset, now, sum); \
     break;
-    ANIMAT_APPLY_CASE(1)
-    ANIMAT_APPLY_CASE(2)
-    ANIMAT_APPLY_CASE(3)
     ANIMAT_APPLY_CASE(4)
-    ANIMAT_APPLY_CASE(5)
-    ANIMAT_APPLY_CASE(6)
-    ANIMAT_APPLY_CASE(7)
     ANIMAT_APPLY_CASE(8)
 #undef ANIMAT_APPLY_CASE
     default:
-      ApplyKernel<0>(n, m_count, capacity_, kernel, offset, now, sum);
+      ApplyKernel<0>(n, stride, capacity_, kernel, offset, now, sum);
       break;
   }
   for (int m = 0; m < m_count; ++m) {
     S* signal = grn->signal_row(keep_[m]);
     for (int i = 0; i < n; ++i) {
       // NaN passes through (never clamped to a number).
-      const S v = sum[static_cast<size_t>(i) * m_count + m];
+      const S v = sum[static_cast<size_t>(i) * stride + m];
       signal[i] = v > S{1} ? S{1} : v;
     }
   }

@@ -93,7 +93,7 @@ class MorphogenFieldT {
   // so one step's values of all cells lie together. Precondition:
   // morphogens_ > 0.
   S* ring_slot(int s, int cell) {
-    return &history_[(static_cast<size_t>(s) * capacity_ + cell) * morphogens_];
+    return &history_[(static_cast<size_t>(s) * capacity_ + cell) * stride_];
   }
   // The cell's values entering `step` (any integer), first copy.
   S* slot(int step, int cell) { return ring_slot(step & (kHistory - 1), cell); }
@@ -101,20 +101,25 @@ class MorphogenFieldT {
   // source_offset_ of every pair, from delay_ and the morphogen count.
   void UpdateOffsets();
 
+  // Values per cell and slot: morphogens rounded up to a multiple of 4,
+  // so that the sums run in whole vectors; the padding stays 0.
+  static int Stride(int morphogens) { return (morphogens + 3) / 4 * 4; }
+
   int morphogens_;
+  int stride_;
   int capacity_;
   int cells_ = 0;
   SignalParams params_;
   std::vector<int> keep_;       // Network morphogen index of each kept one.
   std::vector<S> kernel_;       // capacity x capacity
   std::vector<uint8_t> delay_;  // capacity x capacity
-  std::vector<S> history_;      // [kRing slots][capacity][morphogen]
+  std::vector<S> history_;      // [kRing slots][capacity][stride_]
   // Where cell i finds cell k's values (i, k < capacity; symmetric): cell
   // k's values of ring slot kHistory - delay(i, k) are at history_ index
-  // source_offset_[i][k] + k * morphogens, and those entering step s
-  // (s mod kHistory) * capacity * morphogens further on.
+  // source_offset_[i][k] + k * stride_, and those entering step s
+  // (s mod kHistory) * capacity * stride_ further on.
   std::vector<uint32_t> source_offset_;
-  mutable std::vector<S> sum_;  // scratch, [cell][morphogen]
+  mutable std::vector<S> sum_;  // scratch, [cell][stride_]
   // Scratch for SetGeometry, one entry per pair i < k.
   std::vector<double> pair_distance_, pair_kernel_, pair_delay_;
 };
