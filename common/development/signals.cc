@@ -50,13 +50,8 @@ MorphogenFieldT<S>::MorphogenFieldT(int morphogens, int capacity,
 
 template <typename S>
 void MorphogenFieldT<S>::UpdateOffsets() {
-  const size_t m = static_cast<size_t>(stride_);
-  for (int i = 0; i < capacity_; ++i) {
-    for (int k = 0; k < capacity_; ++k) {
-      const size_t at = static_cast<size_t>(i) * capacity_ + k;
-      source_offset_[at] = static_cast<uint32_t>(
-          static_cast<size_t>(kHistory - delay_[at]) * capacity_ * m);
-    }
+  for (size_t at = 0; at < source_offset_.size(); ++at) {
+    source_offset_[at] = OffsetOf(delay_[at]);
   }
 }
 
@@ -64,16 +59,18 @@ template <typename S>
 void MorphogenFieldT<S>::Restrict(const std::vector<int>& keep) {
   const int kept = static_cast<int>(keep.size());
   const int stride = Stride(kept);
+  // keep[j] indexes the current compacted layout through keep_.
+  std::vector<int> from_index(kept);
+  for (int j = 0; j < kept; ++j) {
+    from_index[j] = static_cast<int>(
+        std::find(keep_.begin(), keep_.end(), keep[j]) - keep_.begin());
+  }
   std::vector<S> history(kRing * static_cast<size_t>(capacity_) * stride);
   for (int cell = 0; kept > 0 && cell < cells_; ++cell) {
     for (int s = 0; s < kRing; ++s) {
       const S* from = ring_slot(s, cell);
       S* to = &history[(static_cast<size_t>(s) * capacity_ + cell) * stride];
-      // keep[j] indexes the current compacted layout through keep_.
-      for (int j = 0; j < kept; ++j) {
-        const auto it = std::find(keep_.begin(), keep_.end(), keep[j]);
-        to[j] = from[it - keep_.begin()];
-      }
+      for (int j = 0; j < kept; ++j) to[j] = from[from_index[j]];
     }
   }
   history_ = std::move(history);
@@ -138,20 +135,18 @@ void MorphogenFieldT<S>::SetGeometry(std::span<const Vec2> positions) {
   args.kernel = pair_kernel_.data();
   args.delay = pair_delay_.data();
   kernels::PairKernels(args);
-  // Offsets as UpdateOffsets computes them, written with the delays.
-  const uint32_t slot_size = static_cast<uint32_t>(capacity_ * stride_);
   size_t p = 0;
   for (int i = 0; i < n; ++i) {
     kernel_[i * capacity_ + i] = S{1};
     delay_[i * capacity_ + i] = 0;
-    source_offset_[i * capacity_ + i] = kHistory * slot_size;
+    source_offset_[i * capacity_ + i] = OffsetOf(0);
     for (int k = i + 1; k < n; ++k, ++p) {
       kernel_[i * capacity_ + k] = kernel_[k * capacity_ + i] =
           static_cast<S>(pair_kernel_[p]);
       const uint8_t delay = static_cast<uint8_t>(pair_delay_[p]);
       delay_[i * capacity_ + k] = delay_[k * capacity_ + i] = delay;
       source_offset_[i * capacity_ + k] = source_offset_[k * capacity_ + i] =
-          (kHistory - delay) * slot_size;
+          OffsetOf(delay);
     }
   }
 }
@@ -164,7 +159,7 @@ void MorphogenFieldT<S>::Record(int step, const GrnBatchT<S>& grn) {
     for (int cell = 0; cell < cells_; ++cell) {
       S* at = slot(step, cell);
       at[m] = level[cell];
-      at[static_cast<size_t>(kHistory) * capacity_ * stride_ + m] = level[cell];
+      at[kHistory * slot_size() + m] = level[cell];
     }
   }
 }
@@ -237,8 +232,8 @@ void MorphogenFieldT<S>::Apply(int step, GrnBatchT<S>* grn) const {
   S* sum = sum_.data();
   const S* kernel = kernel_.data();
   const uint32_t* offset = source_offset_.data();
-  const S* now = history_.data() + static_cast<size_t>(step & (kHistory - 1)) *
-                                       capacity_ * stride;
+  const S* now = history_.data() +
+                 static_cast<size_t>(step & (kHistory - 1)) * slot_size();
   // The padding lanes (stride > m_count) sum zeros and are not read.
   switch (stride) {
 #define ANIMAT_APPLY_CASE(M)                                           \

@@ -98,6 +98,13 @@ class MorphogenFieldT {
   // The cell's values entering `step` (any integer), first copy.
   S* slot(int step, int cell) { return ring_slot(step & (kHistory - 1), cell); }
 
+  // Values of one slot (all cells): the distance between a slot and the
+  // next, and between a value's two copies (kHistory slots apart).
+  size_t slot_size() const { return static_cast<size_t>(capacity_) * stride_; }
+  // source_offset_ of a pair with this delay (less its source's k * stride_).
+  uint32_t OffsetOf(int delay) const {
+    return static_cast<uint32_t>((kHistory - delay) * slot_size());
+  }
   // source_offset_ of every pair, from delay_ and the morphogen count.
   void UpdateOffsets();
 
