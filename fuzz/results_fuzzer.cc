@@ -33,8 +33,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
     const bool ok = result.status() == v1::EvaluationResult::OK;
     if (ok != result.has_fitness()) std::abort();
-    if (ok && !(std::isfinite(result.fitness()) && result.fitness() >= 0)) {
+    // Only a guidance score (with its source distances) may be negative.
+    const bool guidance = result.source_distances_size() > 0;
+    if (ok && !(std::isfinite(result.fitness()) &&
+                (guidance || result.fitness() >= 0))) {
       std::abort();
+    }
+    if (guidance && !ok) std::abort();
+    for (double d : result.source_distances()) {
+      if (!(std::isfinite(d) && d >= 0)) std::abort();
     }
     if (result.has_body()) {
       const v1::BodySummary& b = result.body();
