@@ -57,6 +57,9 @@ class NullScoring final : public EvaluationService {
   }
   size_t pending() const override { return service_->pending(); }
   const Clock& clock() const override { return service_->clock(); }
+  // The stand-in fitness depends on the id: a copy of a genome scores
+  // differently from its original.
+  bool results_follow_genome() const override { return false; }
 
  private:
   EvaluationService* service_;

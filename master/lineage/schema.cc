@@ -394,6 +394,37 @@ CREATE VIEW line_of_descent AS
   SELECT line.run_id, line.step, i.id, i.generation, i.operators, i.fitness
   FROM line JOIN individuals i ON i.run_id = line.run_id AND i.id = line.id;
 )sql",
+    // 9 -> 10: an offspring whose genome is byte for byte a member's of
+    // the generation before is not simulated again: its evaluation is the
+    // member's, copied (evaluation is a pure function of the genome and
+    // the run's configuration), and reused_from names the individual
+    // whose simulation it is. NULL for every simulated evaluation and for
+    // those recorded before. Appended to the view individuals after
+    // version 9's columns.
+    R"sql(
+ALTER TABLE evaluations ADD COLUMN reused_from INTEGER;
+
+DROP VIEW line_of_descent;
+DROP VIEW individuals;
+CREATE VIEW individuals AS
+  SELECT b.run_id, b.id, b.generation, b.operators, b.genome, b.genome_hash,
+         b.elements, b.created_at, e.status, e.reason, e.fitness, e.cells,
+         e.steps, e.wall_seconds, e.worker, e.state_hash, e.evaluated_at,
+         e.springs, e.chambers, e.skin_edges, e.spread_major, e.spread_minor,
+         e.distance, e.energy, e.max_overlap, e.isa, e.reused_from
+  FROM births b LEFT JOIN evaluations e
+    ON e.run_id = b.run_id AND e.id = b.id;
+
+CREATE VIEW line_of_descent AS
+  WITH RECURSIVE line (run_id, id, step) AS (
+    SELECT run_id, id, 0 FROM best
+    UNION ALL
+    SELECT line.run_id, p.parent, line.step + 1
+    FROM line JOIN parents p
+      ON p.run_id = line.run_id AND p.child = line.id AND p.position = 0)
+  SELECT line.run_id, line.step, i.id, i.generation, i.operators, i.fitness
+  FROM line JOIN individuals i ON i.run_id = line.run_id AND i.id = line.id;
+)sql",
 };
 
 constexpr int kKnown = static_cast<int>(std::size(kMigrations));

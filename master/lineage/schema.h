@@ -9,7 +9,7 @@
 namespace animat::lineage {
 
 // The schema this build writes (PRAGMA user_version).
-inline constexpr int kSchemaVersion = 9;
+inline constexpr int kSchemaVersion = 10;
 
 // The schema version of `db` (its PRAGMA user_version; 0 for a database
 // that is no lineage store): the one place it is read. Fails only on an

@@ -629,6 +629,42 @@ Status GenerationWrite::Add(const std::vector<NewIndividual>& offspring) {
   return Status::Ok();
 }
 
+Result<bool> GenerationWrite::Reuse(uint64_t id, uint64_t source) {
+  if (!open_) return failed_;
+  sql::Database& db = *store_->db_;
+  Result<sql::Statement> copy = db.Cached(
+      "INSERT OR IGNORE INTO evaluations (run_id, id, status, reason,"
+      " fitness, cells, steps, wall_seconds, worker, state_hash,"
+      " evaluated_at, springs, chambers, skin_edges, spread_major,"
+      " spread_minor, distance, energy, max_overlap, isa, reused_from)"
+      " SELECT run_id, ?2, status, reason, fitness, cells, steps, NULL, NULL,"
+      " state_hash, ?4, springs, chambers, skin_edges, spread_major,"
+      " spread_minor, distance, energy, max_overlap, NULL,"
+      " COALESCE(reused_from, id)"
+      " FROM evaluations WHERE run_id = ?1 AND id = ?3"
+      " AND status NOT IN ('crashed', 'not_evaluated')"
+      " AND EXISTS (SELECT 1 FROM births WHERE run_id = ?1 AND id = ?2)");
+  if (!copy.ok()) return Fail(copy.status());
+  copy->Bind(1, run_)
+      .Bind(2, static_cast<int64_t>(id))
+      .Bind(3, static_cast<int64_t>(source))
+      .Bind(4, now_);
+  Status status = copy->Run();
+  if (!status.ok()) return Fail(status);
+  if (db.changes() != 1) return false;
+  Result<sql::Statement> trials = db.Cached(
+      "INSERT INTO trials (run_id, id, trial, source_distance)"
+      " SELECT run_id, ?2, trial, source_distance FROM trials"
+      " WHERE run_id = ?1 AND id = ?3 ORDER BY trial");
+  if (!trials.ok()) return Fail(trials.status());
+  trials->Bind(1, run_)
+      .Bind(2, static_cast<int64_t>(id))
+      .Bind(3, static_cast<int64_t>(source));
+  status = trials->Run();
+  if (!status.ok()) return Fail(status);
+  return true;
+}
+
 Status GenerationWrite::Commit() {
   if (!open_) return failed_;
   sql::Database& db = *store_->db_;

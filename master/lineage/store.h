@@ -251,6 +251,18 @@ class GenerationWrite {
   GenerationWrite& operator=(const GenerationWrite&) = delete;
 
   Status Add(const std::vector<NewIndividual>& offspring);
+  // Records `source`'s evaluation as that of offspring `id` (added
+  // before, not yet evaluated), whose genome is the same bytes: every
+  // column but wall_seconds, worker and isa (NULL: nothing was simulated
+  // for it) and evaluated_at, with its trials, and reused_from naming the
+  // individual whose simulation it is (source's own reused_from when it
+  // has one, else source). True when recorded; false, recording nothing,
+  // when `source` has no evaluation or one that says nothing about its
+  // genome (status crashed or not_evaluated), or `id` is already
+  // evaluated or unknown. The caller vouches that the genomes are equal
+  // and that evaluation depends on nothing else (the run's configuration
+  // and build being the same).
+  Result<bool> Reuse(uint64_t id, uint64_t source);
   Status Commit();
 
  private:

@@ -120,12 +120,14 @@ void EvolutionRun::AwaitedOffspring::Expect(uint64_t first_id, size_t count) {
 
 void EvolutionRun::AwaitedOffspring::Record(
     const std::vector<lineage::Evaluation>& committed) {
-  for (const lineage::Evaluation& e : committed) {
-    const uint64_t i = e.id - first;
-    if (e.id >= first && i < awaited.size() && awaited[i]) {
-      awaited[i] = false;
-      --left;
-    }
+  for (const lineage::Evaluation& e : committed) Record(e.id);
+}
+
+void EvolutionRun::AwaitedOffspring::Record(uint64_t id) {
+  const uint64_t i = id - first;
+  if (id >= first && i < awaited.size() && awaited[i]) {
+    awaited[i] = false;
+    --left;
   }
 }
 
@@ -396,10 +398,22 @@ Status EvolutionRun::MakeGeneration(
       members.size() < population ? population - members.size() : 0;
   for (size_t i = 0; i < count; ++i) members.push_back(*next + i);
 
+  // The parents by genome, the lowest id first, when a copy's evaluation
+  // may stand for its own.
+  std::map<std::string, uint64_t> parents_by_genome;
+  if (evaluators->results_follow_genome()) {
+    for (size_t i = 0; i < genomes_.ids.size(); ++i) {
+      parents_by_genome.emplace(
+          protocol::SerializeGenome(genomes_.genomes[i]).bytes,
+          genomes_.ids[i]);
+    }
+  }
   OffspringPipeline pipeline(generation, *next, count, std::move(ranked),
                              &genomes_, p);
+  std::vector<uint64_t> reused;
   Result<std::vector<lineage::NewIndividual>> offspring =
-      WriteGeneration(generation, std::move(members), &pipeline, evaluators);
+      WriteGeneration(generation, std::move(members), &pipeline,
+                      parents_by_genome, evaluators, &reused);
   if (!offspring.ok()) return offspring.status();
   std::vector<Genome> made = pipeline.TakeGenomes();
   for (size_t i = 0; i < count; ++i) {
@@ -409,13 +423,15 @@ Status EvolutionRun::MakeGeneration(
   genomes_ = std::move(next_genomes);
   genomes_generation_ = generation;
   awaited_.Expect(*next, count);
+  for (uint64_t id : reused) awaited_.Record(id);
   Submit(*offspring, evaluators);
   return Status::Ok();
 }
 
 Result<std::vector<lineage::NewIndividual>> EvolutionRun::WriteGeneration(
     int generation, std::vector<uint64_t> members, OffspringPipeline* pipeline,
-    EvaluationService* evaluators) {
+    const std::map<std::string, uint64_t>& parents_by_genome,
+    EvaluationService* evaluators, std::vector<uint64_t>* reused) {
   Result<std::unique_ptr<lineage::GenerationWrite>> write =
       store_->BeginGeneration(run_id_, generation, std::move(members));
   if (!write.ok()) return write.status();
@@ -425,7 +441,20 @@ Result<std::vector<lineage::NewIndividual>> EvolutionRun::WriteGeneration(
     if (chunk.empty()) break;
     Status status = (*write)->Add(chunk);
     if (!status.ok()) return status;
-    for (lineage::NewIndividual& n : chunk) written.push_back(std::move(n));
+    for (lineage::NewIndividual& n : chunk) {
+      const auto parent = n.serialized
+                              ? parents_by_genome.find(n.serialized->bytes)
+                              : parents_by_genome.end();
+      if (parent != parents_by_genome.end()) {
+        Result<bool> copied = (*write)->Reuse(n.id, parent->second);
+        if (!copied.ok()) return copied.status();
+        if (*copied) {
+          reused->push_back(n.id);
+          continue;
+        }
+      }
+      written.push_back(std::move(n));
+    }
     // Workers are served between chunks (heartbeats, results of work
     // already out), so a large generation does not look like a lost
     // master. The results wait in memory for the next Flush.

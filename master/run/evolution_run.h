@@ -21,6 +21,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -99,6 +100,7 @@ class EvolutionRun {
     size_t left = 0;
     void Expect(uint64_t first_id, size_t count);
     void Record(const std::vector<lineage::Evaluation>& committed);
+    void Record(uint64_t id);
   };
 
   EvolutionRun(lineage::Store* store, RunSettings settings, int64_t run_id,
@@ -132,10 +134,16 @@ class EvolutionRun {
   Result<std::vector<Scored>> Parents(
       int generation, const std::vector<lineage::Score>* scores);
   // Writes the generation with the offspring `pipeline` makes, in chunks,
-  // serving `evaluators` between chunks; returns the offspring written.
+  // serving `evaluators` between chunks. An offspring whose genome's bytes
+  // are a key of `parents_by_genome` (a parent member's id by its genome)
+  // gets that member's evaluation in the same transaction
+  // (GenerationWrite::Reuse) and its id goes to `reused`; returns the
+  // offspring written that are still to be evaluated.
   Result<std::vector<lineage::NewIndividual>> WriteGeneration(
       int generation, std::vector<uint64_t> members,
-      OffspringPipeline* pipeline, EvaluationService* evaluators);
+      OffspringPipeline* pipeline,
+      const std::map<std::string, uint64_t>& parents_by_genome,
+      EvaluationService* evaluators, std::vector<uint64_t>* reused);
   // Polls `evaluators` for up to `timeout_ms` and keeps the results for
   // the next Flush. Fails on a null-evaluation result (the other results
   // are kept).

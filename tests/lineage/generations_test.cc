@@ -1,5 +1,6 @@
 // Generations in the lineage store: AddGeneration, the same in parts
-// (BeginGeneration), CompleteGeneration, Generation, LatestGeneration.
+// (BeginGeneration, with evaluations reused for copies),
+// CompleteGeneration, Generation, LatestGeneration.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -169,6 +170,110 @@ TEST_F(GenerationsTest, AFailedPartUndoesTheWholeGenerationWrite) {
   EXPECT_EQ(Value(*store_, "SELECT COUNT(*) FROM individuals WHERE id >= 6"),
             "0");
   EXPECT_EQ(Value(*store_, "SELECT COUNT(*) FROM parents"), "0");
+}
+
+// Reuse copies a member's evaluation to an offspring of the same genome:
+// every column but those that say where and how long it ran, the trials,
+// and the individual whose simulation it is, through a chain of copies.
+TEST_F(GenerationsTest, ReuseCopiesAMembersEvaluationWithItsTrials) {
+  ASSERT_TRUE(store_->AddGeneration(run_, 0, {0, 1, 2, 3}).ok());
+  Evaluation guided = ::animat::testing::OkEvaluation(0, -0.75);
+  guided.result.set_max_overlap(0.0625);
+  guided.result.set_distance(3.5);
+  guided.result.set_energy(12.25);
+  guided.result.add_source_distances(29.0);
+  guided.result.add_source_distances(31.5);
+  *guided.result.mutable_body() = ::animat::testing::MakeBody(4);
+  guided.isa = "avx512";
+  Evaluation crashed =
+      ::animat::testing::FailedEvaluation(1, v1::EvaluationResult::CRASHED);
+  ASSERT_TRUE(
+      store_
+          ->RecordEvaluations(
+              run_, {guided, crashed, ::animat::testing::FailedEvaluation(2)})
+          .ok());
+  Result<std::unique_ptr<GenerationWrite>> write =
+      store_->BeginGeneration(run_, 1, {0, 4, 5, 6, 7});
+  ASSERT_TRUE(write.ok()) << write.status().ToString();
+  ASSERT_TRUE((*write)
+                  ->Add({MakeIndividual(4, 1, {0}, {"copy"}),
+                         MakeIndividual(5, 1, {1}, {"copy"}),
+                         MakeIndividual(6, 1, {2}, {"copy"}),
+                         MakeIndividual(7, 1, {3}, {"copy"})})
+                  .ok());
+  EXPECT_TRUE(*(*write)->Reuse(4, 0));
+  EXPECT_FALSE(*(*write)->Reuse(5, 1)) << "a crash says nothing of a genome";
+  EXPECT_TRUE(*(*write)->Reuse(6, 2));
+  EXPECT_FALSE(*(*write)->Reuse(7, 3)) << "3 is not evaluated";
+  EXPECT_FALSE(*(*write)->Reuse(4, 2)) << "4 keeps its first evaluation";
+  EXPECT_FALSE(*(*write)->Reuse(99, 0)) << "99 was never made";
+  ASSERT_TRUE((*write)->Commit().ok());
+  write->reset();
+
+  const std::string columns =
+      "status, reason, fitness, cells, steps, state_hash, springs,"
+      " chambers, skin_edges, spread_major, spread_minor, distance, energy,"
+      " max_overlap";
+  EXPECT_EQ(Rows(*store_, "SELECT " + columns +
+                              " FROM evaluations"
+                              " WHERE id = 4"),
+            Rows(*store_, "SELECT " + columns +
+                              " FROM evaluations"
+                              " WHERE id = 0"));
+  EXPECT_EQ(Rows(*store_, "SELECT " + columns +
+                              " FROM evaluations"
+                              " WHERE id = 6"),
+            Rows(*store_, "SELECT " + columns +
+                              " FROM evaluations"
+                              " WHERE id = 2"));
+  EXPECT_EQ(Rows(*store_,
+                 "SELECT id, reused_from, wall_seconds, worker, isa FROM"
+                 " evaluations ORDER BY id"),
+            (Table{{"0", "NULL", "0.25", "host:42", "avx512"},
+                   {"1", "NULL", "0.001", "host:43", "NULL"},
+                   {"2", "NULL", "0.001", "host:43", "NULL"},
+                   {"4", "0", "NULL", "NULL", "NULL"},
+                   {"6", "2", "NULL", "NULL", "NULL"}}));
+  EXPECT_EQ(Rows(*store_,
+                 "SELECT id, trial, source_distance FROM trials"
+                 " ORDER BY id, trial"),
+            (Table{{"0", "0", "29.0"},
+                   {"0", "1", "31.5"},
+                   {"4", "0", "29.0"},
+                   {"4", "1", "31.5"}}));
+  EXPECT_TRUE(IsUtcStamp(
+      Value(*store_, "SELECT evaluated_at FROM evaluations WHERE id = 4")));
+  Result<std::vector<uint64_t>> pending = store_->Unevaluated(run_);
+  ASSERT_TRUE(pending.ok());
+  EXPECT_EQ(*pending, (std::vector<uint64_t>{3, 5, 7}));
+
+  // A copy of the copy names the individual that was simulated.
+  ASSERT_TRUE(store_->CompleteGeneration(run_, 0, {0, 1, 2, 3}, {}).ok());
+  write = store_->BeginGeneration(run_, 2, {4, 8});
+  ASSERT_TRUE(write.ok()) << write.status().ToString();
+  ASSERT_TRUE((*write)->Add({MakeIndividual(8, 2, {4}, {"copy"})}).ok());
+  EXPECT_TRUE(*(*write)->Reuse(8, 4));
+  ASSERT_TRUE((*write)->Commit().ok());
+  EXPECT_EQ(Value(*store_, "SELECT reused_from FROM individuals WHERE id = 8"),
+            "0");
+  EXPECT_EQ(Value(*store_, "SELECT COUNT(*) FROM trials WHERE id = 8"), "2");
+}
+
+// Reuse is part of the generation's transaction: not committed, nothing.
+TEST_F(GenerationsTest, AReuseNotCommittedLeavesNothing) {
+  ASSERT_TRUE(store_->AddGeneration(run_, 0, {0, 1}).ok());
+  ASSERT_TRUE(
+      store_->RecordEvaluations(run_, {::animat::testing::OkEvaluation(0, 1.5)})
+          .ok());
+  {
+    Result<std::unique_ptr<GenerationWrite>> write =
+        store_->BeginGeneration(run_, 1, {0, 4});
+    ASSERT_TRUE(write.ok()) << write.status().ToString();
+    ASSERT_TRUE((*write)->Add({MakeIndividual(4, 1, {0}, {"copy"})}).ok());
+    EXPECT_TRUE(*(*write)->Reuse(4, 0));
+  }
+  EXPECT_EQ(Value(*store_, "SELECT COUNT(*) FROM evaluations"), "1");
+  EXPECT_EQ(Value(*store_, "SELECT COUNT(*) FROM births WHERE id = 4"), "0");
 }
 
 TEST(GenerationWriteTest, OtherConnectionsSeeTheGenerationOnlyOnceCommitted) {

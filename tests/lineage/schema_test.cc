@@ -379,7 +379,7 @@ TEST(SchemaTest, Version3StoreGainsBodyColumnsNullInEveryOldRow) {
     // Version 3's columns first, in order, then the body's.
     std::vector<std::vector<std::string>> names =
         Rows(**store, "SELECT name FROM pragma_table_info('individuals')");
-    ASSERT_EQ(names.size(), 26u);
+    ASSERT_EQ(names.size(), 27u);
     for (size_t c = 0; c < kBodyColumns.size(); ++c) {
       EXPECT_EQ(names[17 + c][0], kBodyColumns[c]);
     }
@@ -389,6 +389,7 @@ TEST(SchemaTest, Version3StoreGainsBodyColumnsNullInEveryOldRow) {
     EXPECT_EQ(names[23][0], "energy");
     EXPECT_EQ(names[24][0], "max_overlap");  // Version 8's.
     EXPECT_EQ(names[25][0], "isa");          // Version 9's.
+    EXPECT_EQ(names[26][0], "reused_from");  // Version 10's.
     EXPECT_EQ(Value(**store,
                     "SELECT COUNT(*) FROM individuals"
                     " WHERE distance IS NOT NULL OR energy IS NOT NULL"),
@@ -554,12 +555,12 @@ TEST(SchemaTest, Version7StoreGainsMaxOverlapNullInEveryOldRow) {
   EXPECT_EQ(UserVersion(file.path()), kSchemaVersion);
   std::vector<std::vector<std::string>> names =
       Rows(**store, "SELECT name FROM pragma_table_info('individuals')");
-  ASSERT_EQ(names.size(), before[0].size() + 2);  // Versions 8 and 9's.
+  ASSERT_EQ(names.size(), before[0].size() + 3);  // Versions 8 to 10's.
   EXPECT_EQ(names[before[0].size()][0], "max_overlap");
   std::vector<std::vector<std::string>> after =
       Rows(**store, "SELECT * FROM individuals ORDER BY id");
   for (std::vector<std::string>& row : after) {
-    for (int added = 0; added < 2; ++added) {
+    for (int added = 0; added < 3; ++added) {
       EXPECT_EQ(row.back(), "NULL");
       row.pop_back();
     }
@@ -589,16 +590,18 @@ TEST(SchemaTest, Version8StoreGainsIsaNullInEveryOldRow) {
 
   Result<std::unique_ptr<Store>> store = Store::Open(file.path());
   ASSERT_TRUE(store.ok()) << store.status().ToString();
-  EXPECT_EQ(UserVersion(file.path()), 9);
+  EXPECT_EQ(UserVersion(file.path()), kSchemaVersion);
   std::vector<std::vector<std::string>> names =
       Rows(**store, "SELECT name FROM pragma_table_info('individuals')");
-  ASSERT_EQ(names.size(), before[0].size() + 1);
-  EXPECT_EQ(names.back()[0], "isa");
+  ASSERT_EQ(names.size(), before[0].size() + 2);  // Versions 9 and 10's.
+  EXPECT_EQ(names[before[0].size()][0], "isa");
   std::vector<std::vector<std::string>> after =
       Rows(**store, "SELECT * FROM individuals ORDER BY id");
   for (std::vector<std::string>& row : after) {
-    EXPECT_EQ(row.back(), "NULL");
-    row.pop_back();
+    for (int added = 0; added < 2; ++added) {
+      EXPECT_EQ(row.back(), "NULL");
+      row.pop_back();
+    }
   }
   EXPECT_EQ(after, before);
 
@@ -609,6 +612,35 @@ TEST(SchemaTest, Version8StoreGainsIsaNullInEveryOldRow) {
   EXPECT_EQ(Rows(**store, "SELECT id, isa FROM individuals ORDER BY id"),
             (std::vector<std::vector<std::string>>{
                 {"0", "NULL"}, {"1", "avx512"}, {"2", "NULL"}}));
+}
+
+// A store written by schema version 9 gains reused_from, the last column
+// of individuals, NULL in every old row (each of them was simulated); the
+// other columns read as before.
+TEST(SchemaTest, Version9StoreGainsReusedFromNullInEveryOldRow) {
+  TempStorePath file("v9");
+  const std::vector<std::vector<std::string>> before =
+      OldStore(file, 9,
+               " (1, 0, 0, 'random', x'0a0b0c', '0000000000000001', 3, 't0'),"
+               " (1, 1, 0, 'random', x'0a0b0d', '0000000000000002', 3, 't1');"
+               "INSERT INTO evaluations (run_id, id, status, reason, fitness,"
+               " isa) VALUES (1, 0, 'ok', '', 0.5, 'avx2');");
+  ASSERT_EQ(before.size(), 2u);
+
+  Result<std::unique_ptr<Store>> store = Store::Open(file.path());
+  ASSERT_TRUE(store.ok()) << store.status().ToString();
+  EXPECT_EQ(UserVersion(file.path()), 10);
+  std::vector<std::vector<std::string>> names =
+      Rows(**store, "SELECT name FROM pragma_table_info('individuals')");
+  ASSERT_EQ(names.size(), before[0].size() + 1);
+  EXPECT_EQ(names.back()[0], "reused_from");
+  std::vector<std::vector<std::string>> after =
+      Rows(**store, "SELECT * FROM individuals ORDER BY id");
+  for (std::vector<std::string>& row : after) {
+    EXPECT_EQ(row.back(), "NULL");
+    row.pop_back();
+  }
+  EXPECT_EQ(after, before);
 }
 
 // An individual of a realistic genome (about 1 kB) costs about its size on

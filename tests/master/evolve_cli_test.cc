@@ -263,12 +263,18 @@ TEST_F(EvolveCliTest, LineageAnswersAsTheStoreSays) {
   EXPECT_EQ(RealCell(fields["distance"]), swum[0]) << out;
   EXPECT_EQ(RealCell(fields["energy"]), swum[1]) << out;
   // The path that evaluated it: the workers', which share this process's
-  // environment and machine; every evaluation records one.
+  // environment and machine; every simulated evaluation records one, and
+  // an evaluation reused for a copy of a parent's genome none.
   EXPECT_EQ(fields["isa"], IsaName(ActiveIsa())) << out;
   EXPECT_EQ(QueryRows(db_,
                       "SELECT DISTINCT COALESCE(isa, 'NULL') FROM individuals"
-                      " WHERE status IS NOT NULL"),
+                      " WHERE status IS NOT NULL AND reused_from IS NULL"),
             (std::vector<SqlRow>{{IsaName(ActiveIsa())}}));
+  EXPECT_EQ(QueryRows(db_,
+                      "SELECT COUNT(*) FROM individuals WHERE reused_from IS"
+                      " NOT NULL AND (isa IS NOT NULL OR worker IS NOT NULL"
+                      " OR wall_seconds IS NOT NULL)"),
+            (std::vector<SqlRow>{{"0"}}));
 
   // ancestors: every ancestor once, at its shortest distance, nearest
   // first then by id; computed here from the parents table.

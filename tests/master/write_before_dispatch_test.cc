@@ -161,10 +161,19 @@ TEST_F(MasterTest, EveryGenomeAWorkerReceivesIsAlreadyCommitted) {
   EXPECT_EQ(missing, 0);
   EXPECT_EQ(different, 0);
 
-  // Every individual of the finished run came through this worker.
+  // Every individual of the finished run came through this worker, but
+  // the copies of a parent's genome, which took its evaluation.
   const Progress done = ReadProgress(db);
   EXPECT_TRUE(done.finished) << done.ToString();
-  EXPECT_EQ(static_cast<int64_t>(received.size()), done.individuals);
+  const int64_t reused = QueryInt(
+      db, "SELECT COUNT(*) FROM evaluations WHERE reused_from IS NOT NULL");
+  EXPECT_EQ(static_cast<int64_t>(received.size()), done.individuals - reused);
+  for (const SqlRow& row :
+       QueryRows(db,
+                 "SELECT id FROM evaluations WHERE reused_from IS NOT"
+                 " NULL")) {
+    EXPECT_EQ(received.count(std::stoull(row.at(0))), 0u) << row.at(0);
+  }
   EXPECT_EQ(done.complete_generations, run.generations);
 }
 
