@@ -12,7 +12,10 @@
 // decided on evaluated candidates only (initial_population.h). So the
 // store ends up with the same individuals, parents and evaluations
 // whatever the number of workers, the order results arrive in, or how
-// often the master was killed and resumed.
+// often the master was killed and resumed. An offspring whose genome is a
+// parent generation member's is not submitted when the service's results
+// follow the genome: it takes that member's evaluation, written with the
+// generation (GenerationWrite::Reuse; docs/lineage.md).
 //
 // Not thread-safe: one thread calls Run.
 #ifndef ANIMAT_MASTER_RUN_EVOLUTION_RUN_H_

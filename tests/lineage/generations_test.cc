@@ -210,22 +210,16 @@ TEST_F(GenerationsTest, ReuseCopiesAMembersEvaluationWithItsTrials) {
   ASSERT_TRUE((*write)->Commit().ok());
   write->reset();
 
-  const std::string columns =
-      "status, reason, fitness, cells, steps, state_hash, springs,"
-      " chambers, skin_edges, spread_major, spread_minor, distance, energy,"
-      " max_overlap";
-  EXPECT_EQ(Rows(*store_, "SELECT " + columns +
-                              " FROM evaluations"
-                              " WHERE id = 4"),
-            Rows(*store_, "SELECT " + columns +
-                              " FROM evaluations"
-                              " WHERE id = 0"));
-  EXPECT_EQ(Rows(*store_, "SELECT " + columns +
-                              " FROM evaluations"
-                              " WHERE id = 6"),
-            Rows(*store_, "SELECT " + columns +
-                              " FROM evaluations"
-                              " WHERE id = 2"));
+  // What the evaluation says of the genome.
+  const auto result_of = [this](int id) {
+    return Rows(*store_,
+                "SELECT status, reason, fitness, cells, steps, state_hash,"
+                " springs, chambers, skin_edges, spread_major, spread_minor,"
+                " distance, energy, max_overlap FROM evaluations WHERE id = " +
+                    std::to_string(id));
+  };
+  EXPECT_EQ(result_of(4), result_of(0));
+  EXPECT_EQ(result_of(6), result_of(2));
   EXPECT_EQ(Rows(*store_,
                  "SELECT id, reused_from, wall_seconds, worker, isa FROM"
                  " evaluations ORDER BY id"),

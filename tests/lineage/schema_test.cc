@@ -541,6 +541,31 @@ TEST(SchemaTest, Version6StoreGainsAnEmptyTrialsTable) {
             (std::vector<std::vector<std::string>>{{"1", "0"}, {"1", "1"}}));
 }
 
+// After an upgrade of a store whose view individuals read `before`: its
+// columns are `before`'s, then `added` in order, NULL in every old row.
+void ExpectAddedColumnsNullInOldRows(
+    Store& store, const std::vector<std::vector<std::string>>& before,
+    const std::vector<std::string>& added) {
+  ASSERT_FALSE(before.empty());
+  const size_t old_columns = before[0].size();
+  const std::vector<std::vector<std::string>> names =
+      Rows(store, "SELECT name FROM pragma_table_info('individuals')");
+  ASSERT_EQ(names.size(), old_columns + added.size());
+  for (size_t c = 0; c < added.size(); ++c) {
+    EXPECT_EQ(names[old_columns + c][0], added[c]);
+  }
+  std::vector<std::vector<std::string>> after =
+      Rows(store, "SELECT * FROM individuals ORDER BY id");
+  for (std::vector<std::string>& row : after) {
+    ASSERT_EQ(row.size(), names.size());
+    for (size_t c = old_columns; c < row.size(); ++c) {
+      EXPECT_EQ(row[c], "NULL") << names[c][0];
+    }
+    row.resize(old_columns);
+  }
+  EXPECT_EQ(after, before);
+}
+
 // A store written by schema version 7 gains max_overlap, the last column of
 // individuals, NULL in every old row; the other columns read as before, and
 // results recorded after have it.
@@ -553,19 +578,8 @@ TEST(SchemaTest, Version7StoreGainsMaxOverlapNullInEveryOldRow) {
   Result<std::unique_ptr<Store>> store = Store::Open(file.path());
   ASSERT_TRUE(store.ok()) << store.status().ToString();
   EXPECT_EQ(UserVersion(file.path()), kSchemaVersion);
-  std::vector<std::vector<std::string>> names =
-      Rows(**store, "SELECT name FROM pragma_table_info('individuals')");
-  ASSERT_EQ(names.size(), before[0].size() + 3);  // Versions 8 to 10's.
-  EXPECT_EQ(names[before[0].size()][0], "max_overlap");
-  std::vector<std::vector<std::string>> after =
-      Rows(**store, "SELECT * FROM individuals ORDER BY id");
-  for (std::vector<std::string>& row : after) {
-    for (int added = 0; added < 3; ++added) {
-      EXPECT_EQ(row.back(), "NULL");
-      row.pop_back();
-    }
-  }
-  EXPECT_EQ(after, before);
+  ExpectAddedColumnsNullInOldRows(**store, before,
+                                  {"max_overlap", "isa", "reused_from"});
 
   Evaluation folded = ::animat::testing::OkEvaluation(1, 1.0);
   folded.result.set_max_overlap(0.125);
@@ -591,19 +605,7 @@ TEST(SchemaTest, Version8StoreGainsIsaNullInEveryOldRow) {
   Result<std::unique_ptr<Store>> store = Store::Open(file.path());
   ASSERT_TRUE(store.ok()) << store.status().ToString();
   EXPECT_EQ(UserVersion(file.path()), kSchemaVersion);
-  std::vector<std::vector<std::string>> names =
-      Rows(**store, "SELECT name FROM pragma_table_info('individuals')");
-  ASSERT_EQ(names.size(), before[0].size() + 2);  // Versions 9 and 10's.
-  EXPECT_EQ(names[before[0].size()][0], "isa");
-  std::vector<std::vector<std::string>> after =
-      Rows(**store, "SELECT * FROM individuals ORDER BY id");
-  for (std::vector<std::string>& row : after) {
-    for (int added = 0; added < 2; ++added) {
-      EXPECT_EQ(row.back(), "NULL");
-      row.pop_back();
-    }
-  }
-  EXPECT_EQ(after, before);
+  ExpectAddedColumnsNullInOldRows(**store, before, {"isa", "reused_from"});
 
   Evaluation wide = ::animat::testing::OkEvaluation(1, 1.0);
   wide.isa = "avx512";
@@ -630,17 +632,7 @@ TEST(SchemaTest, Version9StoreGainsReusedFromNullInEveryOldRow) {
   Result<std::unique_ptr<Store>> store = Store::Open(file.path());
   ASSERT_TRUE(store.ok()) << store.status().ToString();
   EXPECT_EQ(UserVersion(file.path()), 10);
-  std::vector<std::vector<std::string>> names =
-      Rows(**store, "SELECT name FROM pragma_table_info('individuals')");
-  ASSERT_EQ(names.size(), before[0].size() + 1);
-  EXPECT_EQ(names.back()[0], "reused_from");
-  std::vector<std::vector<std::string>> after =
-      Rows(**store, "SELECT * FROM individuals ORDER BY id");
-  for (std::vector<std::string>& row : after) {
-    EXPECT_EQ(row.back(), "NULL");
-    row.pop_back();
-  }
-  EXPECT_EQ(after, before);
+  ExpectAddedColumnsNullInOldRows(**store, before, {"reused_from"});
 }
 
 // An individual of a realistic genome (about 1 kB) costs about its size on
