@@ -6,6 +6,7 @@
 #include <memory>
 #include <system_error>
 
+#include "master/evolution/evolution_params.h"
 #include "master/lineage/queries.h"
 #include "master/lineage/store.h"
 
@@ -30,10 +31,21 @@ RunStatus ReadRun(const std::string& name, const std::string& path) {
   if (runs->empty()) return status;
   const lineage::RunRow& run = runs->back();
   status.state = run.state == "finished" ? "finished" : "in progress";
-  status.generations = run.config.evolution().generations();
+  EvolutionParams params;
+  Status read = EvolutionParamsFromProto(run.config.evolution(), &params);
+  if (!read.ok()) return fail(read);
+  status.generations = params.generations;
   Result<std::vector<lineage::CompletedGeneration>> done =
       lineage::CompletedGenerations(**store, run.run_id);
   if (!done.ok()) return fail(done.status());
+  // A run that extends while improving: its length once it is decided.
+  const int last = params.generations - 1;
+  if (EvolutionExtends(params) && static_cast<int>(done->size()) > last &&
+      (*done)[last].generation == last) {
+    const int before = last - params.extend_window;
+    status.generations = EvolutionLength(params, (*done)[last].stats.best,
+                                         (*done)[before].stats.best);
+  }
   if (!done->empty()) {
     // Generations are numbered from 0 (the initial population).
     status.generations_done = done->back().generation + 1;

@@ -19,7 +19,9 @@ struct RunStatus {
   // or "unreadable: WHY".
   std::string state;
   int generations_done = 0;  // Completed generations.
-  int generations = 0;       // Of the run's configuration; 0 if unknown.
+  // Of the run's configuration (its extend_to once the run has decided
+  // to go on: EvolutionLength); 0 if unknown.
+  int generations = 0;
   std::optional<double> best, mean;  // Of the last completed generation.
 };
 

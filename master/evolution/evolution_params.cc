@@ -76,6 +76,10 @@ constexpr ParamRow<P> kEvolution[] = {
     {"max_elements", &P::max_elements,
      ParamRange::Closed(1, static_cast<double>(kMaxGenomeElements)),
      "a longer child is replaced by a copy of its parent"},
+    {"extend_to", &P::extend_to, ParamRange::Closed(0, kIntMax),
+     "a run still improving at `generations` goes on to this many; 0: never"},
+    {"extend_window", &P::extend_window, ParamRange::Closed(1, kIntMax),
+     "still improving: a new best in this many last generations"},
 };
 
 }  // namespace
@@ -92,6 +96,15 @@ Status EvolutionParamsFromProto(const v1::EvolutionConfig& m,
       RequireIntInRange("evolution.elite", p.elite, 0, p.population - 1LL),
       CheckParams<M>("evolution.mutation", p.mutation, kMutation),
   });
+  // An extension goes beyond `generations` and looks back within it.
+  if (status.ok() && p.extend_to != 0) {
+    status = FirstError({
+        RequireIntInRange("evolution.extend_to", p.extend_to,
+                          p.generations + 1LL, kIntMax),
+        RequireIntInRange("evolution.extend_window", p.extend_window, 1,
+                          p.generations - 1LL),
+    });
+  }
   if (!status.ok()) return status;
   *params = p;
   return Status::Ok();
@@ -102,6 +115,17 @@ v1::EvolutionConfig EvolutionParamsToProto(const EvolutionParams& p) {
   WriteParams<P>(p, kEvolution, &m);
   WriteParams<M>(p.mutation, kMutation, m.mutable_mutation());
   return m;
+}
+
+bool EvolutionExtends(const EvolutionParams& p) {
+  return p.extend_to > p.generations;
+}
+
+int EvolutionLength(const EvolutionParams& p, std::optional<double> best_last,
+                    std::optional<double> best_before) {
+  if (!EvolutionExtends(p) || !best_last) return p.generations;
+  const bool improving = !best_before || *best_last > *best_before;
+  return improving ? p.extend_to : p.generations;
 }
 
 std::vector<ParamDoc> RunParamDocs() {

@@ -4,6 +4,7 @@
 #define ANIMAT_MASTER_EVOLUTION_EVOLUTION_PARAMS_H_
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,10 @@ struct EvolutionParams {
   int initial_units = 10;
   double initial_min_fitness = 1e-6;
   int max_elements = 1000;
+  // A run still improving at `generations` goes on to extend_to (0:
+  // never): EvolutionLength.
+  int extend_to = 0;
+  int extend_window = 20;
   // Initial genomes get a CHEMICAL S_IN (RandomGenome's `chemical`). Not in
   // EvolutionConfig: RunSettingsFromProto sets it from
   // model.guidance.enabled.
@@ -53,6 +58,18 @@ Status EvolutionParamsFromProto(const v1::EvolutionConfig& message,
                                 EvolutionParams* params);
 // Every field set.
 v1::EvolutionConfig EvolutionParamsToProto(const EvolutionParams& params);
+
+// How many generations a run of `params` makes: `generations`, or
+// `extend_to` when that is set and the run is still improving once it has
+// made `generations`: `best_last`, its best fitness at generation
+// generations - 1, is above `best_before`, its best at generation
+// generations - 1 - extend_window (a generation without any ok member has
+// no best: nullopt, below every fitness). The caller reads the two only
+// when extend_to > generations (EvolutionExtends).
+bool EvolutionExtends(const EvolutionParams& params);
+int EvolutionLength(const EvolutionParams& params,
+                    std::optional<double> best_last,
+                    std::optional<double> best_before);
 
 // Every parameter's line of a run configuration ("model.physics.mass",
 // "evolution.elite", ...) for `animat config defaults --run`.

@@ -5,6 +5,7 @@
 #include "common/genome/genome_proto.h"
 #include "common/protocol/genome_wire.h"
 #include "common/protocol/protocol.h"
+#include "master/lineage/queries.h"
 
 namespace animat {
 namespace {
@@ -247,7 +248,9 @@ Status EvolutionRun::Advance(EvaluationService* evaluators,
       completed_scores = std::move(scores).value();
       continue;
     }
-    if (generation.generation + 1 >= params().generations) {
+    Result<int> length = Length(generation.generation);
+    if (!length.ok()) return length.status();
+    if (generation.generation + 1 >= *length) {
       return Finish(generation.generation + 1);
     }
     Status status = MakeGeneration(
@@ -266,6 +269,32 @@ Status EvolutionRun::Finish(int generations) {
   log_("run " + std::to_string(run_id_) + " finished after " +
        std::to_string(generations) + " generations");
   return Status::Ok();
+}
+
+Result<int> EvolutionRun::Length(int completed) {
+  const EvolutionParams& p = params();
+  if (length_) return *length_;
+  if (!EvolutionExtends(p) || completed + 1 < p.generations) {
+    return p.generations;
+  }
+  Result<std::vector<lineage::CompletedGeneration>> done =
+      lineage::CompletedGenerations(*store_, run_id_);
+  if (!done.ok()) return done.status();
+  const int last = p.generations - 1;
+  const int before = last - p.extend_window;
+  std::optional<double> best_last, best_before;
+  for (const lineage::CompletedGeneration& g : *done) {
+    if (g.generation == last) best_last = g.stats.best;
+    if (g.generation == before) best_before = g.stats.best;
+  }
+  length_ = EvolutionLength(p, best_last, best_before);
+  log_(*length_ > p.generations
+           ? "still improving at generation " + std::to_string(last) +
+                 " (a new best since generation " + std::to_string(before) +
+                 "): goes on to " + std::to_string(*length_) + " generations"
+           : "no new best since generation " + std::to_string(before) +
+                 ": ends at " + std::to_string(*length_) + " generations");
+  return *length_;
 }
 
 Status EvolutionRun::AdvanceInitial(EvaluationService* evaluators,
@@ -320,14 +349,14 @@ void EvolutionRun::Report(int generation, const lineage::GenerationStats& stats,
   if (!progress) return;
   GenerationReport report;
   report.generation = generation;
-  report.generations = params().generations;
+  report.generations = length_.value_or(params().generations);
   report.stats = stats;
   report.evaluations = evaluations_;
   report.evaluations_per_second =
       since > 0 ? static_cast<double>(done) / since : 0.0;
   if (generation > 0 && since > 0) {
     report.seconds_left =
-        static_cast<double>(params().generations - generation - 1) * since;
+        static_cast<double>(report.generations - generation - 1) * since;
   }
   progress(report);
 }

@@ -122,6 +122,10 @@ class EvolutionRun {
   Status AdvanceInitial(EvaluationService* evaluators, bool* changed);
   // Marks the run finished (once).
   Status Finish(int generations);
+  // How many generations the run makes (EvolutionLength), once generation
+  // `completed` is complete: decided, from the store's statistics, when
+  // the run has made params().generations, and logged then.
+  Result<int> Length(int completed);
   // `scores`: of every member, all evaluated.
   Status CompleteGeneration(int generation,
                             const std::vector<lineage::Score>& scores,
@@ -159,6 +163,7 @@ class EvolutionRun {
   int64_t run_id_;
   LogSink log_;
   bool finished_ = false;
+  std::optional<int> length_;                 // Length's decision, once made.
   std::vector<lineage::Evaluation> unsaved_;  // Results not yet committed.
   AwaitedOffspring awaited_;
   // The genomes of generation genomes_generation_'s members as this process

@@ -109,6 +109,47 @@ TEST_F(CampaignCliTest, KilledAndStartedAgainEachRunIsTheRunMadeAlone) {
       << status->output();
 }
 
+// A campaign file can say that runs still improving go on
+// (evolution.extend_to): each run makes as many generations as its own
+// statistics decide, and `animat campaign status` counts to that.
+TEST_F(CampaignCliTest, RunsStillImprovingGoOnAndStatusCountsToTheirEnd) {
+  TestRun base;
+  base.generations = 4;
+  WriteConfig("base.txtpb", base);
+  ASSERT_TRUE(WriteFile(Path("campaign.txtpb"),
+                        "runs { name: \"x\" config: \"base.txtpb\" set: "
+                        "\"evolution { extend_to: 7 extend_window: 1 }\" "
+                        "seeds: [3, 10] }\n")
+                  .ok());
+  CampaignToEnd();
+  std::unique_ptr<ChildProcess> status =
+      StartAnimat({"campaign", "status", "--dir", Path("runs")});
+  ASSERT_TRUE(AwaitExit(*status, kStepWait, "campaign status"));
+  EXPECT_EQ(status->exit_code(), 0) << status->output();
+  for (const char* name : {"x-seed3", "x-seed10"}) {
+    SCOPED_TRACE(name);
+    const std::string db = Store(name);
+    const std::vector<SqlRow> best = QueryRows(
+        db,
+        "SELECT COALESCE((SELECT best_fitness FROM generation_statistics"
+        " WHERE generation = 3), -1e300) > COALESCE((SELECT best_fitness"
+        " FROM generation_statistics WHERE generation = 2), -1e300)");
+    const int length = best.at(0).at(0) == "1" ? 7 : 4;
+    const Progress done = ReadProgress(db);
+    EXPECT_TRUE(done.finished) << done.ToString();
+    EXPECT_EQ(done.complete_generations, length) << done.ToString();
+    // The run's line: its name, then generations done / of the run.
+    const std::string& out = status->output();
+    const size_t at = out.find(std::string(name) + " ");
+    ASSERT_NE(at, std::string::npos) << out;
+    const std::string line = out.substr(at, out.find('\n', at) - at);
+    std::string counted = std::to_string(length);
+    counted += "/";
+    counted += std::to_string(length);
+    EXPECT_NE(line.find(counted), std::string::npos) << line;
+  }
+}
+
 // animat-master --campaign serves workers started elsewhere (here, on the
 // test's endpoint) as it serves one run's.
 TEST_F(CampaignCliTest, AnimatMasterServesACampaignToWorkersItDidNotStart) {

@@ -1,0 +1,93 @@
+// A stand-in for the workers in the run loop's tests: an evaluation
+// service whose result is a pure function of the genome's bytes, as a
+// simulation's is, returned at once; so that whole evolutions run in a
+// fraction of a second and can be compared individual by individual. The
+// real workers' determinism is tested in tests/master/.
+//
+// Not thread-safe, like the services it stands for.
+#ifndef ANIMAT_TESTS_RUN_GENOME_SCORING_H_
+#define ANIMAT_TESTS_RUN_GENOME_SCORING_H_
+
+#include <cstdint>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "common/base/clock.h"
+#include "common/protocol/genome_wire.h"
+#include "master/dispatch/evaluation_service.h"
+
+namespace animat::testing {
+
+// FNV-1a of the bytes: the stand-in simulation.
+inline uint64_t Fnv(const std::string& bytes) {
+  uint64_t h = 0xcbf29ce484222325ULL;
+  for (unsigned char c : bytes) {
+    h ^= c;
+    h *= 0x100000001b3ULL;
+  }
+  return h;
+}
+
+// Evaluates each genome at once, its result a function of its bytes
+// alone: one in 7 non-viable, one in 11 crashed (a status that says
+// nothing about the genome), the rest ok with a fitness in [0, 1).
+class GenomeScoring final : public EvaluationService {
+ public:
+  explicit GenomeScoring(bool follow_genome) : follow_genome_(follow_genome) {}
+
+  void Submit(uint64_t individual, const v1::Genome& genome) override {
+    Submit(individual, protocol::SerializeGenome(genome));
+  }
+  void Submit(uint64_t individual,
+              const protocol::SerializedGenome& genome) override {
+    queue_.emplace_back(individual, genome.bytes);
+    submitted_.insert(individual);
+  }
+  std::vector<Completion> Poll(int) override {
+    std::vector<Completion> done;
+    for (const auto& [id, bytes] : queue_) {
+      const uint64_t h = Fnv(bytes);
+      Completion c;
+      c.individual = id;
+      c.worker = "stand-in:1";
+      c.wall_seconds = 0.5;
+      c.isa = "avx2";
+      v1::EvaluationResult& r = c.result;
+      if (h % 7 == 0) {
+        r.set_status(v1::EvaluationResult::NON_VIABLE);
+        r.set_reason("no path");
+      } else if (h % 11 == 0) {
+        r.set_status(v1::EvaluationResult::CRASHED);
+        r.set_reason("signal 11");
+      } else {
+        r.set_status(v1::EvaluationResult::OK);
+        r.set_fitness(static_cast<double>(h >> 11) * 0x1p-53);
+        r.set_distance(r.fitness());
+        r.set_max_overlap(0.0);
+      }
+      r.set_cells(static_cast<int>(h % 32));
+      r.set_steps(100);
+      r.set_state_hash(h);
+      done.push_back(std::move(c));
+    }
+    queue_.clear();
+    return done;
+  }
+  void Acknowledge(const std::vector<uint64_t>&) override {}
+  size_t pending() const override { return queue_.size(); }
+  const Clock& clock() const override { return RealClock(); }
+  bool results_follow_genome() const override { return follow_genome_; }
+
+  const std::set<uint64_t>& submitted() const { return submitted_; }
+
+ private:
+  bool follow_genome_;
+  std::vector<std::pair<uint64_t, std::string>> queue_;
+  std::set<uint64_t> submitted_;
+};
+
+}  // namespace animat::testing
+
+#endif  // ANIMAT_TESTS_RUN_GENOME_SCORING_H_
