@@ -96,14 +96,12 @@ Status EvolutionParamsFromProto(const v1::EvolutionConfig& m,
       RequireIntInRange("evolution.elite", p.elite, 0, p.population - 1LL),
       CheckParams<M>("evolution.mutation", p.mutation, kMutation),
   });
-  // An extension goes beyond `generations` and looks back within it.
-  if (status.ok() && p.extend_to != 0) {
-    status = FirstError({
-        RequireIntInRange("evolution.extend_to", p.extend_to,
-                          p.generations + 1LL, kIntMax),
-        RequireIntInRange("evolution.extend_window", p.extend_window, 1,
-                          p.generations - 1LL),
-    });
+  // An extension looks back within `generations`. (An extend_to of at
+  // most `generations` extends nothing; it is not refused, so that a run
+  // resumed with more generations keeps a configuration that reads back.)
+  if (status.ok() && EvolutionExtends(p)) {
+    status = RequireIntInRange("evolution.extend_window", p.extend_window, 1,
+                               p.generations - 1LL);
   }
   if (!status.ok()) return status;
   *params = p;

@@ -110,6 +110,28 @@ TEST(ExtendTest, ARunGoesOnOnlyWhileImprovingAndResumesTheSame) {
   EXPECT_GT(ended, 0);
 }
 
+// A finished run resumed with more generations than its extend_to runs to
+// them, and its recorded configuration still reads back.
+TEST(ExtendTest, ResumedWithMoreGenerationsTheRunGoesOnToThem) {
+  const RunSettings settings = Extending(1, 1);
+  std::unique_ptr<lineage::Store> store = MemoryStore();
+  RunIn(store.get(), settings, /*resume=*/false);
+  for (int round = 0; round < 2; ++round) {
+    Result<std::unique_ptr<EvolutionRun>> run =
+        EvolutionRun::Resume(store.get(), std::nullopt, /*force=*/false,
+                             11 + round, [](std::string_view) {});
+    ASSERT_TRUE(run.ok()) << run.status().ToString();
+    GenomeScoring scoring(/*follow_genome=*/true);
+    std::atomic<bool> stop{false};
+    ASSERT_TRUE((*run)->Run(&scoring, stop).ok());
+    EXPECT_TRUE((*run)->finished());
+    Result<std::vector<lineage::CompletedGeneration>> done =
+        lineage::CompletedGenerations(*store, (*run)->run_id());
+    ASSERT_TRUE(done.ok()) << done.status().ToString();
+    EXPECT_EQ(done->size(), 11u + round);
+  }
+}
+
 TEST(ExtendTest, LengthIsGenerationsUnlessStillImproving) {
   EvolutionParams p;
   p.generations = 150;
@@ -124,21 +146,23 @@ TEST(ExtendTest, LengthIsGenerationsUnlessStillImproving) {
   EXPECT_EQ(EvolutionLength(p, -1.0, -2.0), 250);  // Guidance scores.
 }
 
-TEST(ExtendTest, ExtensionBeyondGenerationsWithinTheRunsLength) {
+TEST(ExtendTest, AnExtensionLooksBackWithinTheRunsGenerations) {
   v1::EvolutionConfig message;
   message.set_generations(150);
-  message.set_extend_to(150);
-  EvolutionParams p;
-  Status status = EvolutionParamsFromProto(message, &p);
-  EXPECT_FALSE(status.ok());
-  EXPECT_NE(status.message().find("evolution.extend_to"), std::string::npos)
-      << status.message();
   message.set_extend_to(250);
   message.set_extend_window(150);
-  status = EvolutionParamsFromProto(message, &p);
+  EvolutionParams p;
+  const Status status = EvolutionParamsFromProto(message, &p);
   EXPECT_FALSE(status.ok());
   EXPECT_NE(status.message().find("evolution.extend_window"), std::string::npos)
       << status.message();
+  // Up to `generations`, extend_to extends nothing, and is kept (a run
+  // resumed with more generations than its extend_to reads back).
+  message.set_extend_to(150);
+  ASSERT_TRUE(EvolutionParamsFromProto(message, &p).ok());
+  EXPECT_FALSE(EvolutionExtends(p));
+  EXPECT_EQ(EvolutionLength(p, 2.0, 1.0), 150);
+  message.set_extend_to(250);
   message.set_extend_window(20);
   ASSERT_TRUE(EvolutionParamsFromProto(message, &p).ok());
   EXPECT_EQ(p.extend_to, 250);
