@@ -34,18 +34,15 @@ RunStatus ReadRun(const std::string& name, const std::string& path) {
   EvolutionParams params;
   Status read = EvolutionParamsFromProto(run.config.evolution(), &params);
   if (!read.ok()) return fail(read);
-  status.generations = params.generations;
   Result<std::vector<lineage::CompletedGeneration>> done =
       lineage::CompletedGenerations(**store, run.run_id);
   if (!done.ok()) return fail(done.status());
   // A run that extends while improving: its length once it is decided.
-  const int last = params.generations - 1;
-  if (EvolutionExtends(params) && static_cast<int>(done->size()) > last &&
-      (*done)[last].generation == last) {
-    const int before = last - params.extend_window;
-    status.generations = EvolutionLength(params, (*done)[last].stats.best,
-                                         (*done)[before].stats.best);
+  std::vector<std::optional<double>> bests;
+  for (const lineage::CompletedGeneration& g : *done) {
+    bests.push_back(g.stats.best);
   }
+  status.generations = EvolutionLength(params, bests);
   if (!done->empty()) {
     // Generations are numbered from 0 (the initial population).
     status.generations_done = done->back().generation + 1;

@@ -126,6 +126,17 @@ int EvolutionLength(const EvolutionParams& p, std::optional<double> best_last,
   return improving ? p.extend_to : p.generations;
 }
 
+int EvolutionLength(const EvolutionParams& p,
+                    std::span<const std::optional<double>> best_by_generation) {
+  const size_t last = static_cast<size_t>(p.generations) - 1;
+  if (!EvolutionExtends(p) || best_by_generation.size() <= last) {
+    return p.generations;
+  }
+  // extend_window < generations when extending (EvolutionParamsFromProto).
+  return EvolutionLength(p, best_by_generation[last],
+                         best_by_generation[last - p.extend_window]);
+}
+
 std::vector<ParamDoc> RunParamDocs() {
   std::vector<ParamDoc> docs;
   for (ParamDoc& doc : ModelParamDocs()) {

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,11 @@ bool EvolutionExtends(const EvolutionParams& params);
 int EvolutionLength(const EvolutionParams& params,
                     std::optional<double> best_last,
                     std::optional<double> best_before);
+// The same from the bests of the generations completed so far
+// (best_by_generation[g]: generation g's, from 0 on): `generations` until
+// generation generations - 1 is among them.
+int EvolutionLength(const EvolutionParams& params,
+                    std::span<const std::optional<double>> best_by_generation);
 
 // Every parameter's line of a run configuration ("model.physics.mass",
 // "evolution.elite", ...) for `animat config defaults --run`.

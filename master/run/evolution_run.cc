@@ -280,14 +280,13 @@ Result<int> EvolutionRun::Length(int completed) {
   Result<std::vector<lineage::CompletedGeneration>> done =
       lineage::CompletedGenerations(*store_, run_id_);
   if (!done.ok()) return done.status();
+  std::vector<std::optional<double>> bests;
+  for (const lineage::CompletedGeneration& g : *done) {
+    bests.push_back(g.stats.best);
+  }
+  length_ = EvolutionLength(p, bests);
   const int last = p.generations - 1;
   const int before = last - p.extend_window;
-  std::optional<double> best_last, best_before;
-  for (const lineage::CompletedGeneration& g : *done) {
-    if (g.generation == last) best_last = g.stats.best;
-    if (g.generation == before) best_before = g.stats.best;
-  }
-  length_ = EvolutionLength(p, best_last, best_before);
   log_(*length_ > p.generations
            ? "still improving at generation " + std::to_string(last) +
                  " (a new best since generation " + std::to_string(before) +

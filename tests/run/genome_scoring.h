@@ -20,19 +20,10 @@
 
 namespace animat::testing {
 
-// FNV-1a of the bytes: the stand-in simulation.
-inline uint64_t Fnv(const std::string& bytes) {
-  uint64_t h = 0xcbf29ce484222325ULL;
-  for (unsigned char c : bytes) {
-    h ^= c;
-    h *= 0x100000001b3ULL;
-  }
-  return h;
-}
-
 // Evaluates each genome at once, its result a function of its bytes
-// alone: one in 7 non-viable, one in 11 crashed (a status that says
-// nothing about the genome), the rest ok with a fitness in [0, 1).
+// alone (through their hash, SerializedGenome::hash): one in 7 non-viable, one
+// in 11 crashed (a status that says nothing about the genome), the rest ok with
+// a fitness in [0, 1).
 class GenomeScoring final : public EvaluationService {
  public:
   explicit GenomeScoring(bool follow_genome) : follow_genome_(follow_genome) {}
@@ -42,13 +33,12 @@ class GenomeScoring final : public EvaluationService {
   }
   void Submit(uint64_t individual,
               const protocol::SerializedGenome& genome) override {
-    queue_.emplace_back(individual, genome.bytes);
+    queue_.emplace_back(individual, genome.hash);
     submitted_.insert(individual);
   }
   std::vector<Completion> Poll(int) override {
     std::vector<Completion> done;
-    for (const auto& [id, bytes] : queue_) {
-      const uint64_t h = Fnv(bytes);
+    for (const auto& [id, h] : queue_) {
       Completion c;
       c.individual = id;
       c.worker = "stand-in:1";
@@ -84,7 +74,8 @@ class GenomeScoring final : public EvaluationService {
 
  private:
   bool follow_genome_;
-  std::vector<std::pair<uint64_t, std::string>> queue_;
+  // Individuals submitted, with their genomes' hashes (of the bytes).
+  std::vector<std::pair<uint64_t, uint64_t>> queue_;
   std::set<uint64_t> submitted_;
 };
 
