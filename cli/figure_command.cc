@@ -18,6 +18,7 @@
 #include "analysis/analyze.h"
 #include "cli/animat_source.h"
 #include "cli/commands.h"
+#include "cli/run_record.h"
 #include "common/evaluation/evaluator.h"
 #include "common/evaluation/trace_recorder.h"
 #include "common/genome/genome_proto.h"
@@ -47,6 +48,7 @@ struct Options {
   std::vector<int> cells;
   // fitness, contact-sheet
   std::vector<std::string> dbs;
+  std::vector<std::string> records;  // fitness
   int every = 5;
   int columns = 4;
 };
@@ -219,8 +221,27 @@ std::string FitnessUnits(const v1::Config& model) {
   return "radii swum";
 }
 
+// One run's curves from its completed generations.
+figures::FitnessCurves Curves(
+    int64_t seed, const v1::Config& model,
+    const std::vector<lineage::CompletedGeneration>& rows) {
+  figures::FitnessCurves curves;
+  curves.label = "seed " + std::to_string(seed);
+  curves.units = FitnessUnits(model);
+  for (const lineage::CompletedGeneration& g : rows) {
+    curves.generation.push_back(g.generation);
+    curves.best.push_back(g.stats.best);
+    curves.mean.push_back(g.stats.mean);
+    curves.median.push_back(g.stats.median);
+  }
+  return curves;
+}
+
+// The runs of --db stores first, then those of --record folders.
 int Fitness(const Options& o) {
-  if (o.dbs.empty()) return Fail("figure fitness needs --db FILE");
+  if (o.dbs.empty() && o.records.empty()) {
+    return Fail("figure fitness needs --db FILE or --record DIR");
+  }
   std::vector<figures::FitnessCurves> runs;
   for (const std::string& db : o.dbs) {
     Result<StoreRun> s = OpenRun(db, o.source.run);
@@ -229,16 +250,16 @@ int Fitness(const Options& o) {
         lineage::CompletedGenerations(*s->store, s->run);
     if (!rows.ok()) return Fail(rows.status().message());
     if (rows->empty()) return Fail(db + ": no completed generation yet");
-    figures::FitnessCurves curves;
-    curves.label = "seed " + std::to_string(s->row.seed);
-    curves.units = FitnessUnits(s->row.config.model());
-    for (const lineage::CompletedGeneration& g : *rows) {
-      curves.generation.push_back(g.generation);
-      curves.best.push_back(g.stats.best);
-      curves.mean.push_back(g.stats.mean);
-      curves.median.push_back(g.stats.median);
+    runs.push_back(Curves(s->row.seed, s->row.config.model(), *rows));
+  }
+  for (const std::string& path : o.records) {
+    Result<RunRecord> record = ReadRunRecord(path);
+    if (!record.ok()) return Fail(record.status().message());
+    if (record->generations.empty()) {
+      return Fail(path + ": the record holds no completed generation");
     }
-    runs.push_back(std::move(curves));
+    runs.push_back(
+        Curves(record->seed, record->config.model(), record->generations));
   }
   return Write(o.output, figures::LinePlotSvg(figures::FitnessPlot(runs)));
 }
@@ -329,10 +350,12 @@ void AddRunFigures(CLI::App* figure, const std::shared_ptr<Options>& o,
   };
   CLI::App* fitness = figure->add_subcommand(
       "fitness", "Best, mean and median fitness over generations");
-  fitness
-      ->add_option("--db", o->dbs,
-                   "Lineage store (repeat for several runs on one chart)")
-      ->required();
+  fitness->add_option("--db", o->dbs,
+                      "Lineage store (repeat for several runs on one chart)");
+  fitness->add_option(
+      "--record", o->records,
+      "A run record's folder, written by scripts/run_record.py for a run "
+      "whose store is not kept (repeatable; drawn after the stores)");
   fitness
       ->add_option("--run", o->source.run,
                    "Run in each store (default: the latest)")

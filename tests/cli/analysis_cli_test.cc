@@ -551,6 +551,108 @@ TEST_F(StoreFiguresTest, FitnessHasThreeSeriesPerStore) {
             6u);
 }
 
+// A run record (scripts/run_record.py) of the fixture's run: seed 42, the
+// short model, generations 0-4 at 0.1 (g + 1) except generation 3 (null).
+// `statistics` replaces the generations when given.
+std::string WriteRecord(const std::string& name,
+                        const std::string& statistics = "") {
+  std::string rows;
+  for (int g = 0; g < 5; ++g) {
+    const std::string x = g == 3 ? "null" : ShortestDouble(0.1 * (g + 1));
+    rows += std::string(g ? ", " : "") +
+            "{\"generation\": " + std::to_string(g) +
+            ", \"best_fitness\": " + x + ", \"mean_fitness\": " + x +
+            ", \"median_fitness\": " + x + ", \"best_id\": 7, \"size\": 2}";
+  }
+  const std::string dir = Temp(name);
+  std::filesystem::create_directories(dir);
+  EXPECT_TRUE(WriteFile(dir + "/record.json",
+                        "{\"run\": \"v3-test-seed42\", \"seed\": 42, "
+                        "\"build_id\": \"test\", \"config_text\": \"model { " +
+                            std::string("evaluation { motion_steps: 1200 } }") +
+                            "\", \"statistics\": [" +
+                            (statistics.empty() ? rows : statistics) + "]}\n")
+                  .ok());
+  return dir;
+}
+
+TEST_F(StoreFiguresTest, ARunRecordDrawsAsItsStoreDoes) {
+  const Outcome store =
+      Animat("figure fitness --db " + Path() + " -o " + Temp("store.svg"));
+  ASSERT_EQ(store.exit_code, 0) << store.output;
+  const std::string record = WriteRecord("record");
+  const Outcome folder =
+      Animat("figure fitness --record " + record + " -o " + Temp("rec.svg"));
+  ASSERT_EQ(folder.exit_code, 0) << folder.output;
+  EXPECT_EQ(*ReadFile(Temp("rec.svg")), *ReadFile(Temp("store.svg")));
+  // The record.json itself, after a store: six series, the store's first.
+  const Outcome both =
+      Animat("figure fitness --record " + record + "/record.json --db " +
+             Path() + " -o " + Temp("both.svg"));
+  ASSERT_EQ(both.exit_code, 0) << both.output;
+  const testing::XmlElement svg = ParseSvg(Temp("both.svg"));
+  const auto series = svg.FindAll("polyline", "series");
+  ASSERT_EQ(series.size(), 6u);
+  EXPECT_EQ(series[3]->Attribute("data-label"), "seed 42 best");
+  EXPECT_EQ(series[3]->Attribute("points"), series[0]->Attribute("points"));
+}
+
+TEST_F(StoreFiguresTest, AMalformedRunRecordIsRefusedNamingTheField) {
+  const std::string row =
+      "{\"generation\": 0, \"best_fitness\": 1, \"mean_fitness\": 1, "
+      "\"median_fitness\": 1}";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"[]", "no completed generation"},
+      {"{\"generation\": 0.5, \"best_fitness\": 1}", "generation"},
+      {"{\"generation\": -1, \"best_fitness\": 1}", "generation"},
+      {"{\"generation\": 0, \"mean_fitness\": 1, \"median_fitness\": 1}",
+       "best_fitness: missing"},
+      {"{\"generation\": 0, \"best_fitness\": \"1\", \"mean_fitness\": 1, "
+       "\"median_fitness\": 1}",
+       "best_fitness"},
+      {row + ", " + row, "generations not increasing"},
+      {"7", "statistics[0]: not an object"},
+  };
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const std::string statistics = cases[i].first == "[]" ? "" : cases[i].first;
+    std::string dir = WriteRecord("bad" + std::to_string(i), statistics);
+    if (cases[i].first == "[]") {
+      ASSERT_TRUE(WriteFile(dir + "/record.json",
+                            "{\"run\": \"r\", \"seed\": 1, \"config_text\": "
+                            "\"\", \"statistics\": []}")
+                      .ok());
+    }
+    const Outcome run =
+        Animat("figure fitness --record " + dir + " -o " + Temp("bad.svg"));
+    EXPECT_EQ(run.exit_code, 1) << cases[i].first;
+    EXPECT_NE(run.output.find(cases[i].second), std::string::npos)
+        << cases[i].first << ": " << run.output;
+  }
+  // Not JSON, no seed, a configuration that does not parse, no record.
+  const std::string dir = Temp("broken");
+  std::filesystem::create_directories(dir);
+  for (const auto& [text, message] :
+       std::vector<std::pair<std::string, std::string>>{
+           {"{\"run\": ", "record.json"},
+           {"{\"run\": \"r\", \"config_text\": \"\", \"statistics\": []}",
+            "seed: missing"},
+           {"{\"run\": \"r\", \"seed\": 1, \"config_text\": \"model {\", "
+            "\"statistics\": []}",
+            "config_text"}}) {
+    ASSERT_TRUE(WriteFile(dir + "/record.json", text).ok());
+    const Outcome run =
+        Animat("figure fitness --record " + dir + " -o " + Temp("bad.svg"));
+    EXPECT_EQ(run.exit_code, 1) << text;
+    EXPECT_NE(run.output.find(message), std::string::npos) << run.output;
+  }
+  const Outcome none = Animat("figure fitness --record " + Temp("none") +
+                              " -o " + Temp("bad.svg"));
+  EXPECT_EQ(none.exit_code, 1) << none.output;
+  const Outcome neither = Animat("figure fitness -o " + Temp("bad.svg"));
+  EXPECT_EQ(neither.exit_code, 1) << neither.output;
+  EXPECT_NE(neither.output.find("--record"), std::string::npos);
+}
+
 TEST_F(StoreFiguresTest, TheContactSheetShowsTheBestEveryNGenerations) {
   const Outcome run = Animat("figure contact-sheet --db " + Path() +
                              " --every 3 -o " + Temp("sheet.svg"));
