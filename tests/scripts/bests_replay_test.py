@@ -5,10 +5,11 @@ made under an earlier model (v2: no contacts, its stored `contacts: false`)
 replay unchanged (docs/model.md §7.10, §12).
 
 The stored fitness of each best is the one its report recorded from the
-run's lineage store: docs/results/replication.json, energy.json and
-guidance.json. Every run record in docs/results/runs/ (scripts/
-run_record.py) holds its best and top phenotypes with the fitness and
-final-state hash its store recorded: each must give both again.
+run's lineage store: docs/results/replication.json, energy.json,
+guidance.json and third/runs.json. Every run record in
+docs/results/runs/ (scripts/run_record.py) holds its best and top
+phenotypes with the fitness and final-state hash its store recorded: each
+must give both again.
 
   bests_replay_test.py ANIMAT   (exit 0 when every best replays)
 """
@@ -33,6 +34,13 @@ def stored_bests():
         with open(os.path.join(results, report)) as f:
             for run in json.load(f)["runs"]:
                 out.append((run["genome"], run["fitness"]))
+    # The third edition's bests, copied from their run records by
+    # scripts/results_report.py.
+    third = os.path.join(results, "third", "runs.json")
+    if os.path.isfile(third):
+        with open(third) as f:
+            for run in json.load(f)["runs"]:
+                out.append((run["best_genome"], run["best"]["fitness"]))
     return out
 
 

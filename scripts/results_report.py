@@ -1,0 +1,226 @@
+#!/usr/bin/env python3
+"""The third edition's runs (docs/results.md): from the run records
+(scripts/run_record.py), a table of every run with its build, the fitness
+curves of each condition, each run's best kept in docs/results/bests/ and
+simulated again from those files, and Fig. 4-style panels with a replay
+page for one phenotype of each label that scripts/strategy_report.py found.
+
+  scripts/results_report.py --animat build/bin/animat \\
+      --condition 'v3-dn0.1=docs/results/runs/v3-dn0.1-seed*' ... \\
+      [--strategies docs/results/strategies.json] \\
+      [--dest docs/results/third] [--bests docs/results/bests]
+
+- A condition is a name and a glob of run-record folders.
+- The bests: each run's best genome and model, copied to BESTS/RUN-ID.json
+  and RUN-ID.config.txtpb, then simulated from there by --animat; its
+  fitness must equal the record's to the last bit and its final-state
+  hash the record's (the tests check these files again).
+- The panels (with --strategies, the JSON of strategy_report.py over the
+  same records): for each label found, the phenotype that carries it most
+  clearly (stable under the classifier's ±20% test first, then the widest
+  margin, then the fittest), drawn by `animat figure strip|activity|cells`
+  and `animat render`.
+
+Writes DEST/runs.json (every number), DEST/runs.md (the table),
+DEST/fitness-CONDITION.svg and the panels. Exit 0 when every best replays
+and every figure was drawn, 1 otherwise, 2 on a usage error. Standard
+library only.
+"""
+
+import argparse
+import glob
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from strategy_report import natural_key, parse_pairs  # noqa: E402
+
+PANELS = ("strip", "activity", "cells")
+
+
+def read_records(conditions):
+    """[(condition, folder, record)] in the order given, each condition's
+    folders in natural order."""
+    out = []
+    for name, pattern in conditions:
+        folders = sorted((p for p in glob.glob(pattern)
+                          if os.path.isfile(os.path.join(p, "record.json"))),
+                         key=natural_key)
+        if not folders:
+            sys.exit(f"results_report.py: {name}: no run record matches "
+                     f"{pattern!r}")
+        for folder in folders:
+            with open(os.path.join(folder, "record.json")) as f:
+                out.append((name, folder, json.load(f)))
+    return out
+
+
+def tool(cmd, problems):
+    """Runs a command; on failure records why and returns None."""
+    result = subprocess.run(cmd, capture_output=True, text=True)
+    if result.returncode != 0:
+        problems.append(f"{' '.join(cmd)}: exit {result.returncode}: "
+                        f"{result.stderr.strip()}")
+        return None
+    return result.stdout
+
+
+def keep_best(animat, folder, record, bests, problems):
+    """Copies the run's best to BESTS and simulates it from there; returns
+    the copy's path (without .json) and whether it gave the record's
+    fitness bits and state hash."""
+    best = record["best"]
+    stem = os.path.join(bests, best["genome"])
+    for ext in (".json", ".config.txtpb"):
+        shutil.copyfile(os.path.join(folder, best["genome"] + ext), stem + ext)
+    out = tool([animat, "simulate", "--genome", stem + ".json", "--config",
+                stem + ".config.txtpb", "--json"], problems)
+    if out is None:
+        return stem, False
+    again = json.loads(out)
+    same = (again.get("fitness") is not None and
+            float.hex(again["fitness"]) == float.hex(best["fitness"]) and
+            again.get("state_hash") == best["state_hash"])
+    if not same:
+        problems.append(f"{stem}.json: stored fitness {best['fitness']!r} "
+                        f"and hash {best['state_hash']}, simulated again "
+                        f"{again.get('fitness')!r} and "
+                        f"{again.get('state_hash')}")
+    return stem, same
+
+
+def labels_of(strategies):
+    """{run: best_label} and every phenotype, from strategy_report's JSON."""
+    best, phenotypes = {}, []
+    for condition in strategies["conditions"]:
+        for run in condition["runs"]:
+            best[run["run"]] = run["best_label"]
+            phenotypes += run["phenotypes"]
+    return best, phenotypes
+
+
+def clearest(phenotypes):
+    """{label: the phenotype that carries it most clearly}."""
+    chosen = {}
+    for p in phenotypes:
+        key = (p["stable"], p["margin"], p["fitness"])
+        old = chosen.get(p["label"])
+        if old is None or key > (old["stable"], old["margin"], old["fitness"]):
+            chosen[p["label"]] = p
+    return chosen
+
+
+def draw_panels(animat, chosen, folders, dest, problems):
+    """The panels and replay page of each chosen phenotype; returns
+    {label: file stem}."""
+    drawn = {}
+    for label in sorted(chosen):
+        p = chosen[label]
+        genome = os.path.join(folders[p["run"]], f"{p['run']}-{p['id']}")
+        source = ["--genome", genome + ".json",
+                  "--config", genome + ".config.txtpb"]
+        base = os.path.join(dest, f"{label}-{p['run']}-{p['id']}")
+        ok = all(tool([animat, "figure", kind, *source, "-o",
+                       f"{base}-{kind}.svg"], problems) is not None
+                 for kind in PANELS)
+        ok = tool([animat, "render", *source, "--every", "10", "-o",
+                   base + ".html"], problems) is not None and ok
+        drawn[label] = {"stem": os.path.basename(base), "run": p["run"],
+                        "id": p["id"], "fitness": p["fitness"],
+                        "margin": p["margin"], "stable": p["stable"],
+                        "drawn": ok}
+    return drawn
+
+
+def run_row(name, record, stem, same, best_label):
+    stats = record["statistics"]
+    best = record["best"]
+    return {
+        "condition": name, "run": record["run"],
+        "build": record["build_id"], "seed": record["seed"],
+        "generations": record["generations"], "state": record["state"],
+        "best_at_0": stats[0]["best_fitness"],
+        "best": best, "best_genome": os.path.relpath(stem + ".json"),
+        "replays": same, "best_label": best_label,
+        "last_mean": stats[-1]["mean_fitness"],
+        "last_median": stats[-1]["median_fitness"],
+        "overlap": record["overlap"],
+    }
+
+
+def table(rows):
+    lines = ["| condition | run | build | generations | best at 0 | best (id, "
+             "generation) | last mean | cells, springs, chambers, skin "
+             "| ok individuals | deepest unjoined overlap | above the bound "
+             "| best's label | replays |",
+             "|---|---|---|---:|---:|---|---:|---|---:|---:|---:|---|---|"]
+    for r in rows:
+        b, o = r["best"], r["overlap"]
+        build = r["build"].split()[2] if len(r["build"].split()) > 2 else \
+            r["build"]
+        lines.append(
+            f"| {r['condition']} | {r['run']} | {build} | "
+            f"{r['generations']} | {r['best_at_0']:.2f} | "
+            f"**{b['fitness']:.2f}** ({b['id']}, {b['generation']}) | "
+            f"{r['last_mean']:.2f} | {b['cells']}, {b['springs']}, "
+            f"{b['chambers']}, {b['skin_edges']} | {o['ok']:,} | "
+            f"{o['deepest']:.3f} | {o['above_bound']} | "
+            f"{r['best_label'] or '—'} | "
+            f"{'same bits' if r['replays'] else 'NO'} |")
+    return "\n".join(lines) + "\n"
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--animat", default="build/bin/animat")
+    parser.add_argument("--condition", action="append", default=[],
+                        help="NAME=GLOB of run-record folders (repeatable)")
+    parser.add_argument("--strategies", default=None,
+                        help="strategy_report.py's JSON over the same runs")
+    parser.add_argument("--dest", default="docs/results/third")
+    parser.add_argument("--bests", default="docs/results/bests")
+    args = parser.parse_args()
+    if not args.condition:
+        parser.error("give at least one --condition NAME=GLOB")
+    conditions = parse_pairs(args.condition, "--condition")
+    records = read_records(conditions)
+    os.makedirs(args.dest, exist_ok=True)
+    os.makedirs(args.bests, exist_ok=True)
+    best_label, phenotypes = {}, []
+    if args.strategies:
+        with open(args.strategies) as f:
+            best_label, phenotypes = labels_of(json.load(f))
+
+    problems, rows = [], []
+    for name, folder, record in records:
+        stem, same = keep_best(args.animat, folder, record, args.bests,
+                               problems)
+        rows.append(run_row(name, record, stem, same,
+                            best_label.get(record["run"])))
+    for name, _ in conditions:
+        folders = [x for c, folder, _ in records if c == name
+                   for x in ("--record", folder)]
+        tool([args.animat, "figure", "fitness", *folders, "-o",
+              os.path.join(args.dest, f"fitness-{name}.svg")], problems)
+    folders = {r["run"]: folder for _, folder, r in records}
+    known = [p for p in phenotypes if p["run"] in folders]
+    panels = draw_panels(args.animat, clearest(known), folders, args.dest,
+                         problems)
+
+    with open(os.path.join(args.dest, "runs.json"), "w") as f:
+        json.dump({"runs": rows, "panels": panels, "problems": problems}, f,
+                  indent=1, sort_keys=True)
+    with open(os.path.join(args.dest, "runs.md"), "w") as f:
+        f.write(table(rows))
+    for problem in problems:
+        print(problem, file=sys.stderr)
+    print(f"{len(rows)} runs, {sum(r['replays'] for r in rows)} bests "
+          f"replay, {len(panels)} labels drawn", file=sys.stderr)
+    sys.exit(1 if problems else 0)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,113 @@
+#!/usr/bin/env python3
+"""scripts/results_report.py: the choice of each label's panel, and a whole
+report over one kept run record (its best copied and simulated again, its
+fitness curves, the panel of its label), then the same record with its
+best's fitness altered, which the report must refuse.
+
+  results_report_test.py ANIMAT
+"""
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(
+    os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+import results_report as rr  # noqa: E402
+
+RECORD = os.path.join(ROOT, "docs", "results", "runs", "v3-dn10-seed2")
+ANIMAT = None
+
+
+def phenotype(run, label, stable, margin, fitness):
+    return {"run": run, "id": int(fitness), "label": label,
+            "stable": stable, "margin": margin, "fitness": fitness}
+
+
+class ChoiceTest(unittest.TestCase):
+    def test_stable_then_margin_then_fitness(self):
+        chosen = rr.clearest([
+            phenotype("a", "turtle", False, 0.9, 50.0),
+            phenotype("b", "turtle", True, 0.3, 10.0),
+            phenotype("c", "turtle", True, 0.3, 20.0),
+            phenotype("d", "other", False, 0.1, 5.0),
+            phenotype("e", "other", False, 0.2, 1.0),
+        ])
+        self.assertEqual(chosen["turtle"]["run"], "c")
+        self.assertEqual(chosen["other"]["run"], "e")
+        self.assertEqual(sorted(chosen), ["other", "turtle"])
+
+
+class ReportTest(unittest.TestCase):
+    def report(self, records, tmp):
+        strategies = os.path.join(tmp, "strategies.json")
+        with open(os.path.join(RECORD, "record.json")) as f:
+            record = json.load(f)
+        best = record["best"]
+        with open(strategies, "w") as f:
+            json.dump({"conditions": [{"name": "c", "runs": [{
+                "run": record["run"], "best_label": "turtle",
+                "phenotypes": [phenotype(record["run"], "turtle", True,
+                                         0.5, best["fitness"]) |
+                               {"id": best["id"]}]}]}]}, f)
+        dest = os.path.join(tmp, "dest")
+        run = subprocess.run(
+            [sys.executable, os.path.join(ROOT, "scripts",
+                                          "results_report.py"),
+             "--animat", ANIMAT, "--condition", f"c={records}",
+             "--strategies", strategies, "--dest", dest,
+             "--bests", os.path.join(tmp, "bests")],
+            capture_output=True, text=True, cwd=tmp)
+        return run, dest, record
+
+    def test_a_kept_record(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            run, dest, record = self.report(RECORD, tmp)
+            self.assertEqual(run.returncode, 0, run.stderr)
+            with open(os.path.join(dest, "runs.json")) as f:
+                out = json.load(f)
+            row, = out["runs"]
+            self.assertTrue(row["replays"])
+            self.assertEqual(row["best_label"], "turtle")
+            self.assertEqual(row["generations"], record["generations"])
+            stem = record["best"]["genome"]
+            for ext in (".json", ".config.txtpb"):
+                self.assertTrue(os.path.isfile(
+                    os.path.join(tmp, "bests", stem + ext)))
+            self.assertTrue(os.path.isfile(os.path.join(dest,
+                                                        "fitness-c.svg")))
+            panel = out["panels"]["turtle"]
+            self.assertTrue(panel["drawn"])
+            for kind in rr.PANELS:
+                self.assertTrue(os.path.isfile(os.path.join(
+                    dest, f"{panel['stem']}-{kind}.svg")))
+            with open(os.path.join(dest, "runs.md")) as f:
+                self.assertIn("same bits", f.read())
+
+    def test_a_best_that_does_not_replay_fails_the_report(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            copy = os.path.join(tmp, "records", "v3-dn10-seed2")
+            shutil.copytree(RECORD, copy)
+            path = os.path.join(copy, "record.json")
+            with open(path) as f:
+                record = json.load(f)
+            record["best"]["fitness"] += 1e-9
+            with open(path, "w") as f:
+                json.dump(record, f)
+            run, dest, _ = self.report(copy, tmp)
+            self.assertEqual(run.returncode, 1)
+            self.assertIn("simulated again", run.stderr)
+            with open(os.path.join(dest, "runs.json")) as f:
+                self.assertFalse(json.load(f)["runs"][0]["replays"])
+
+
+if __name__ == "__main__":
+    if len(sys.argv) < 2:
+        sys.exit("usage: results_report_test.py ANIMAT")
+    ANIMAT = os.path.abspath(sys.argv.pop(1))
+    unittest.main()
