@@ -21,7 +21,16 @@ page for one phenotype of each label that scripts/strategy_report.py found.
   margin, then the fittest), drawn by `animat figure strip|activity|cells`
   and `animat render`.
 
-Writes DEST/runs.json (every number), DEST/runs.md (the table),
+- The claims' measurements (docs/results.md, "The paper's claims"), per
+  run: the best against generation 0's best; the cells of the best and of
+  each phenotype (simulated); how the best's centre of mass moves within
+  its strokes (steps moving backward, quiet steps and the speed while
+  quiet: replication_report.py's glide); with --strategies, Spearman's
+  rank correlation of amplitude and frequency over the run's phenotypes;
+  and pooled per condition, that correlation and the phenotypes'
+  amplitudes.
+
+Writes DEST/runs.json (every number), DEST/runs.md (the tables),
 DEST/fitness-CONDITION.svg and the panels. Exit 0 when every best replays
 and every figure was drawn, 1 otherwise, 2 on a usage error. Standard
 library only.
@@ -32,10 +41,12 @@ import glob
 import json
 import os
 import shutil
+import statistics
 import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from replication_report import glide, spearman  # noqa: E402
 from strategy_report import natural_key, parse_pairs  # noqa: E402
 
 PANELS = ("strip", "activity", "cells")
@@ -93,13 +104,15 @@ def keep_best(animat, folder, record, bests, problems):
 
 
 def labels_of(strategies):
-    """{run: best_label} and every phenotype, from strategy_report's JSON."""
-    best, phenotypes = {}, []
+    """{run: best_label}, every phenotype, and {run: [its phenotypes'
+    features]}, from strategy_report's JSON."""
+    best, phenotypes, features = {}, [], {}
     for condition in strategies["conditions"]:
         for run in condition["runs"]:
             best[run["run"]] = run["best_label"]
             phenotypes += run["phenotypes"]
-    return best, phenotypes
+            features[run["run"]] = [p["features"] for p in run["phenotypes"]]
+    return best, phenotypes, features
 
 
 def clearest(phenotypes):
@@ -135,7 +148,63 @@ def draw_panels(animat, chosen, folders, dest, problems):
     return drawn
 
 
-def run_row(name, record, stem, same, best_label):
+def cells_of(animat, folder, genome, problems):
+    """The cells of a record's animat, simulated again."""
+    stem = os.path.join(folder, genome)
+    out = tool([animat, "simulate", "--genome", stem + ".json", "--config",
+                stem + ".config.txtpb", "--json"], problems)
+    return json.loads(out).get("cells") if out is not None else None
+
+
+def trade(points):
+    """Spearman's rho of amplitude against frequency (None below three
+    points) over phenotypes with both."""
+    points = [p for p in points if p["period_steps"] and
+              p["amplitude_mean"] is not None]
+    if len(points) < 3:
+        return None, len(points)
+    return spearman([p["amplitude_mean"] for p in points],
+                    [1.0 / p["period_steps"] for p in points]), len(points)
+
+
+def claims_of(animat, folder, record, stem, features, problems):
+    """One run's measurements for the claims table."""
+    best = record["best"]
+    rho, n = trade(features)
+    return {
+        "best_over_generation_0": best["fitness"] /
+        record["statistics"][0]["best_fitness"],
+        "best_cells": best["cells"],
+        "phenotype_cells": [cells_of(animat, folder, p["genome"], problems)
+                            for p in record["phenotypes"]],
+        "glide": glide(animat, stem + ".json", stem + ".config.txtpb"),
+        "spearman_amplitude_frequency": rho,
+        "spearman_points": n,
+    }
+
+
+def pooled(conditions, rows, features_of):
+    """Per condition, and over all when there are several ("all"): the
+    amplitude-frequency trade and the amplitudes over every phenotype of
+    its runs."""
+    out = {}
+    names = [name for name, _ in conditions]
+    for name in names + (["all"] if len(names) > 1 else []):
+        points = [f for r in rows if name in (r["condition"], "all")
+                  for f in features_of.get(r["run"], [])]
+        rho, n = trade(points)
+        amplitudes = [p["amplitude_mean"] for p in points
+                      if p["amplitude_mean"] is not None]
+        out[name] = {
+            "spearman_amplitude_frequency": rho, "phenotypes": n,
+            "amplitude_median": statistics.median(amplitudes)
+            if amplitudes else None,
+            "amplitude_max": max(amplitudes, default=None),
+        }
+    return out
+
+
+def run_row(name, record, stem, same, best_label, claims):
     stats = record["statistics"]
     best = record["best"]
     return {
@@ -147,7 +216,7 @@ def run_row(name, record, stem, same, best_label):
         "replays": same, "best_label": best_label,
         "last_mean": stats[-1]["mean_fitness"],
         "last_median": stats[-1]["median_fitness"],
-        "overlap": record["overlap"],
+        "overlap": record["overlap"], "claims": claims,
     }
 
 
@@ -173,6 +242,42 @@ def table(rows):
     return "\n".join(lines) + "\n"
 
 
+def number(x, form):
+    return "—" if x is None else format(x, form)
+
+
+def claims_table(rows):
+    lines = ["| run | best / best at generation 0 | cells: best; phenotypes "
+             "with 32 | steps moving backward | quiet steps | speed while "
+             "quiet / mean | Spearman (amplitude, frequency), phenotypes |",
+             "|---|---:|---|---:|---:|---:|---:|"]
+    for r in rows:
+        c = r["claims"]
+        g = c["glide"] or {}
+        cells = c["phenotype_cells"]
+        rho = c["spearman_amplitude_frequency"]
+        lines.append(
+            f"| {r['run']} | {c['best_over_generation_0']:.1f} | "
+            f"{c['best_cells']}; {sum(x == 32 for x in cells)} of "
+            f"{len(cells)} | {number(g.get('backward_share'), '.0%')} | "
+            f"{number(g.get('quiet_share'), '.0%')} | "
+            f"{number(g.get('quiet_speed'), '+.2f')} | "
+            f"{number(rho, '+.2f')} ({c['spearman_points']}) |")
+    return "\n".join(lines) + "\n"
+
+
+def pooled_table(conditions):
+    lines = ["| condition | Spearman (amplitude, frequency), pooled | "
+             "phenotypes | amplitude: median, largest |",
+             "|---|---:|---:|---|"]
+    for name, c in conditions.items():
+        lines.append(
+            f"| {name} | {number(c['spearman_amplitude_frequency'], '+.2f')}"
+            f" | {c['phenotypes']} | {number(c['amplitude_median'], '.2f')}, "
+            f"{number(c['amplitude_max'], '.2f')} |")
+    return "\n".join(lines) + "\n"
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--animat", default="build/bin/animat")
@@ -189,17 +294,19 @@ def main():
     records = read_records(conditions)
     os.makedirs(args.dest, exist_ok=True)
     os.makedirs(args.bests, exist_ok=True)
-    best_label, phenotypes = {}, []
+    best_label, phenotypes, features_of = {}, [], {}
     if args.strategies:
         with open(args.strategies) as f:
-            best_label, phenotypes = labels_of(json.load(f))
+            best_label, phenotypes, features_of = labels_of(json.load(f))
 
     problems, rows = [], []
     for name, folder, record in records:
         stem, same = keep_best(args.animat, folder, record, args.bests,
                                problems)
+        claims = claims_of(args.animat, folder, record, stem,
+                           features_of.get(record["run"], []), problems)
         rows.append(run_row(name, record, stem, same,
-                            best_label.get(record["run"])))
+                            best_label.get(record["run"]), claims))
     for name, _ in conditions:
         folders = [x for c, folder, _ in records if c == name
                    for x in ("--record", folder)]
@@ -211,10 +318,12 @@ def main():
                          problems)
 
     with open(os.path.join(args.dest, "runs.json"), "w") as f:
-        json.dump({"runs": rows, "panels": panels, "problems": problems}, f,
-                  indent=1, sort_keys=True)
+        json.dump({"runs": rows, "panels": panels,
+                   "conditions": pooled(conditions, rows, features_of),
+                   "problems": problems}, f, indent=1, sort_keys=True)
     with open(os.path.join(args.dest, "runs.md"), "w") as f:
-        f.write(table(rows))
+        f.write(table(rows) + "\n" + claims_table(rows) + "\n" +
+                pooled_table(pooled(conditions, rows, features_of)))
     for problem in problems:
         print(problem, file=sys.stderr)
     print(f"{len(rows)} runs, {sum(r['replays'] for r in rows)} bests "

@@ -26,7 +26,18 @@ ANIMAT = None
 
 def phenotype(run, label, stable, margin, fitness):
     return {"run": run, "id": int(fitness), "label": label,
-            "stable": stable, "margin": margin, "fitness": fitness}
+            "stable": stable, "margin": margin, "fitness": fitness,
+            "features": {"period_steps": 100.0, "amplitude_mean": 0.3}}
+
+
+class TradeTest(unittest.TestCase):
+    def test_rank_correlation_of_amplitude_and_frequency(self):
+        # Amplitude rising as the period shortens: rho = +1; a phenotype
+        # without a period is left out.
+        points = [{"period_steps": p, "amplitude_mean": a}
+                  for p, a in ((100, 0.1), (50, 0.2), (25, 0.3), (None, 1))]
+        self.assertEqual(rr.trade(points), (1.0, 3))
+        self.assertEqual(rr.trade(points[:2]), (None, 2))
 
 
 class ChoiceTest(unittest.TestCase):
@@ -88,6 +99,17 @@ class ReportTest(unittest.TestCase):
                     dest, f"{panel['stem']}-{kind}.svg")))
             with open(os.path.join(dest, "runs.md")) as f:
                 self.assertIn("same bits", f.read())
+            claims = row["claims"]
+            self.assertEqual(claims["best_over_generation_0"],
+                             record["best"]["fitness"] /
+                             record["statistics"][0]["best_fitness"])
+            self.assertEqual(len(claims["phenotype_cells"]),
+                             len(record["phenotypes"]))
+            self.assertTrue(all(c == 32 for c in claims["phenotype_cells"]))
+            self.assertGreaterEqual(claims["glide"]["quiet_share"], 0.0)
+            # One phenotype's features: too few for a rank correlation.
+            self.assertIsNone(claims["spearman_amplitude_frequency"])
+            self.assertEqual(claims["spearman_points"], 1)
 
     def test_a_best_that_does_not_replay_fails_the_report(self):
         with tempfile.TemporaryDirectory() as tmp:
