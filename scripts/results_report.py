@@ -42,11 +42,11 @@ import json
 import os
 import shutil
 import statistics
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from replication_report import glide, spearman  # noqa: E402
+from replication_report import try_run as tool  # noqa: E402
 from strategy_report import natural_key, parse_pairs  # noqa: E402
 
 PANELS = ("strip", "activity", "cells")
@@ -67,16 +67,6 @@ def read_records(conditions):
             with open(os.path.join(folder, "record.json")) as f:
                 out.append((name, folder, json.load(f)))
     return out
-
-
-def tool(cmd, problems):
-    """Runs a command; on failure records why and returns None."""
-    result = subprocess.run(cmd, capture_output=True, text=True)
-    if result.returncode != 0:
-        problems.append(f"{' '.join(cmd)}: exit {result.returncode}: "
-                        f"{result.stderr.strip()}")
-        return None
-    return result.stdout
 
 
 def keep_best(animat, folder, record, bests, problems):
