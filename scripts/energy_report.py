@@ -7,15 +7,25 @@ reports under "Energy": per run the best's distance, energy and distance per
 energy, its strategy, the last generation's spending, and the generations'
 bests over time.
 
-  scripts/energy_report.py [--out out/energy-dn1] [--dest docs/results]
-      [--animat out/energy-dn1/bin/animat]
+  scripts/energy_report.py [--name energy-dn1] [--report energy]
+      [--partners EARLIER.json ...] [--out out/NAME] [--dest docs/results]
+      [--animat out/NAME/bin/animat]
+
+NAME names the runs: their stores are NAME-seedS.db, as
+scripts/seeded_runs.sh --name NAME or a campaign's runs named NAME write
+them. Every best it compares with (the replication's d_N = 1 bests, and
+the energy-aware bests of each --partners report) is simulated under the
+arm's own model, so that distance, energy and energy-aware fitness are
+counted by one cost model: e.g. the energy-holding arm
+(configs/energy-holding.txtpb) against the work-only bests of
+docs/results/energy.json, with holding charged.
 
 Only Python's standard library; the simulator work is done by `animat`
-(lineage, simulate, analyze). Writes DEST/energy.json (every number),
-DEST/energy.md (the tables), DEST/energy-dn1.svg (the bests' distance over
-the generations), each energy-aware best's strip and activity figures
-(DEST/energy-dn1-seedS-strip.svg, -activity.svg), and the energy-aware
-bests' genomes and models in DEST/bests/. A run still going is reported as far as it has gone.
+(lineage, simulate, analyze). Writes DEST/REPORT.json (every number),
+DEST/REPORT.md (the tables), DEST/NAME.svg (the bests' distance over
+the generations), each of the arm's bests' strip and activity figures
+(DEST/NAME-seedS-strip.svg, -activity.svg), and their genomes and models
+in DEST/bests/. A run still going is reported as far as it has gone.
 """
 
 import argparse
@@ -30,7 +40,9 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import replication_report as rr  # noqa: E402  (its store and analysis code)
 
-RUN_NAME = re.compile(r"^energy-dn1-seed([0-9]+)\.db$")
+def run_name(name):
+    """NAME-seedS.db: a store of the runs named NAME (seed S)."""
+    return re.compile("^" + re.escape(name) + r"-seed([0-9]+)\.db$")
 
 
 def energy_extras(path, run_id, budget):
@@ -90,7 +102,7 @@ def row(r):
             f"{r['energy_fitness']:.2f} | {a['label']} (nearest "
             f"{a['nearest']}) | {period} | "
             f"{(a.get('amplitude_mean') or 0):.2f} | {feature('synchrony')} | "
-            f"{feature('coasting')} |")
+            f"{feature('coasting')} | {feature('holding')} |")
 
 
 def nice_ticks(top):
@@ -130,7 +142,8 @@ def svg(runs, path):
         out.append(f'<text x="{x(t):.1f}" y="{h - bottom + 14}" '
                    f'text-anchor="middle">{t:g}</text>')
     for i, r in enumerate(runs):
-        colour = "#c0392b" if r["fitness_kind"] == "energy" else "#2c3e50"
+        colour = {"energy": "#c0392b", "distance": "#2c3e50"}.get(
+            r["fitness_kind"], "#e67e22")  # Orange: an earlier arm's.
         dash = ["", "6 3", "2 2", "8 2 2 2"][i % 4]
         points = " ".join(f"{x(g):.1f},{y(d):.1f}"
                           for g, d in enumerate(r["curve"]))
@@ -146,76 +159,120 @@ def svg(runs, path):
         f.write("\n".join(out) + "\n")
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--out", default="out/energy-dn1")
-    parser.add_argument("--dest", default="docs/results")
-    parser.add_argument("--animat", default=None)
-    args = parser.parse_args()
-    animat = args.animat or os.path.join(args.out, "bin", "animat")
-    os.makedirs(os.path.join(args.dest, "bests"), exist_ok=True)
+def arm_run(animat, path, name, seed, dest):
+    """One run of the arm from its store: its best kept in DEST/bests/ and
+    simulated again (its stored fitness to the bit), its strip and
+    activity figures, its curve and last generation."""
+    s = rr.store_summary(path)
+    budget = budget_of(s["model_text"])
+    curve, last = energy_extras(path, s["run_id"], budget)
+    best = s["best"]
+    stem = rr.write_best(animat, path, name, best["id"], s["model_text"], dest)
+    again = simulate(animat, stem + ".json", stem + ".config.txtpb")
+    for kind in ("strip", "activity"):
+        rr.run([animat, "figure", kind, "--genome", stem + ".json",
+                "--config", stem + ".config.txtpb", "-o",
+                os.path.join(dest, f"{name}-{kind}.svg")])
+    if float.hex(again["fitness"]) != float.hex(best["fitness"]):
+        sys.exit(f"{stem}: simulated again, fitness {again['fitness']} "
+                 f"is not the stored {best['fitness']}")
+    return {
+        "name": name, "fitness_kind": "energy", "seed": seed,
+        "budget": budget, "generations": s["generations"],
+        "best_id": best["id"], "best_generation": best["generation"],
+        "fitness": best["fitness"], "distance": again["distance"],
+        "energy": again["energy"], "energy_fitness": again["fitness"],
+        "genome": stem + ".json", "config": stem + ".config.txtpb",
+        "analysis": rr.analyze(animat, path, best["id"]),
+        "curve": [p["distance"] for p in curve],
+        "per_generation": curve, "last_generation": last,
+    }
 
-    runs = []
-    for name in sorted(os.listdir(args.out)):
-        m = RUN_NAME.match(name)
-        if not m:
-            continue
-        path = os.path.join(args.out, name)
-        s = rr.store_summary(path)
-        budget = budget_of(s["model_text"])
-        curve, last = energy_extras(path, s["run_id"], budget)
-        best = s["best"]
-        stem = rr.write_best(animat, path, name[:-3], best["id"],
-                             s["model_text"], args.dest)
-        again = simulate(animat, stem + ".json", stem + ".config.txtpb")
-        for kind in ("strip", "activity"):
-            rr.run([animat, "figure", kind, "--genome", stem + ".json",
-                    "--config", stem + ".config.txtpb", "-o",
-                    os.path.join(args.dest, f"{name[:-3]}-{kind}.svg")])
-        if float.hex(again["fitness"]) != float.hex(best["fitness"]):
-            sys.exit(f"{stem}: simulated again, fitness {again['fitness']} "
-                     f"is not the stored {best['fitness']}")
-        runs.append({
-            "name": name[:-3], "fitness_kind": "energy",
-            "seed": int(m.group(1)), "budget": budget,
-            "generations": s["generations"], "best_id": best["id"],
-            "best_generation": best["generation"], "fitness": best["fitness"],
-            "distance": again["distance"], "energy": again["energy"],
-            "energy_fitness": again["fitness"], "genome": stem + ".json",
-            "analysis": rr.analyze(animat, path, best["id"]),
-            "curve": [p["distance"] for p in curve],
-            "per_generation": curve, "last_generation": last,
-        })
-    if not runs:
-        sys.exit(f"no stores energy-dn1-seedS.db in {args.out}")
-    budget = runs[0]["budget"]
 
-    # The distance-only side: the replication's d_N = 1 runs and bests.
-    replication = json.load(open(os.path.join(args.dest, "replication.json")))
+def partner(animat, arm_config, kind, **fields):
+    """A best evolved under another fitness, simulated under the arm's
+    model (ARM_CONFIG): its distance, and its energy and fitness as this
+    arm's cost model counts them."""
+    here = simulate(animat, fields["genome"], arm_config)
+    return dict(fields, fitness_kind=kind, distance=here["distance"],
+                energy=here["energy"], energy_fitness=here["fitness"])
+
+
+def partners_of(animat, args, arm_config):
+    """The distance-only side (the replication's d_N = 1 runs and bests)
+    and the runs of each --partners report, under the arm's model."""
+    out = []
+    with open(os.path.join(args.dest, "replication.json")) as f:
+        replication = json.load(f)
     for r in replication["runs"]:
         if r["drag"] != 1:
             continue
-        genome = r["best_genome"]
-        config = genome[:-len(".json")] + ".config.txtpb"
-        again = simulate(animat, genome, config)
-        runs.append({
-            "name": r["name"], "fitness_kind": "distance", "seed": r["seed"],
-            "generations": r["generations"], "best_id": r["best"]["id"],
-            "best_generation": r["best"]["generation"],
-            "fitness": r["best"]["fitness"], "distance": again["distance"],
-            "energy": again["energy"],
-            "energy_fitness": again["distance"] * min(
-                1.0, budget / again["energy"]) if again["energy"] > 0
-            else again["distance"],
-            "genome": genome, "analysis": r["best_analysis"],
-            "curve": [x["best_fitness"] for x in r["stats"]],
-        })
+        out.append(partner(
+            animat, arm_config, "distance", name=r["name"], seed=r["seed"],
+            generations=r["generations"], best_id=r["best"]["id"],
+            best_generation=r["best"]["generation"],
+            fitness=r["best"]["fitness"], genome=r["best_genome"],
+            analysis=r["best_analysis"],
+            curve=[x["best_fitness"] for x in r["stats"]]))
+    for path in args.partners:
+        with open(path) as f:
+            report = json.load(f)
+        for r in report["runs"]:
+            if r["fitness_kind"] != "energy":
+                continue
+            out.append(partner(
+                animat, arm_config, f"energy ({report_name(path)}.json)",
+                name=r["name"], seed=r["seed"], generations=r["generations"],
+                best_id=r["best_id"], best_generation=r["best_generation"],
+                fitness=r["fitness"], genome=r["genome"],
+                analysis=r["analysis"], curve=r["curve"]))
+    return out
+
+
+def report_name(path):
+    """The report's name: energy for docs/results/energy.json."""
+    return os.path.splitext(os.path.basename(path))[0]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--name", default="energy-dn1",
+                        help="the runs' name: stores NAME-seedS.db")
+    parser.add_argument("--report", default="energy",
+                        help="writes DEST/REPORT.md and DEST/REPORT.json")
+    parser.add_argument("--partners", action="append", default=[],
+                        help="an earlier energy report's JSON whose "
+                        "energy-aware bests are compared under this arm's "
+                        "model (repeatable)")
+    parser.add_argument("--out", default=None,
+                        help="the stores' folder (default out/NAME)")
+    parser.add_argument("--dest", default="docs/results")
+    parser.add_argument("--animat", default=None)
+    args = parser.parse_args()
+    args.out = args.out or os.path.join("out", args.name)
+    animat = args.animat or os.path.join(args.out, "bin", "animat")
+    os.makedirs(os.path.join(args.dest, "bests"), exist_ok=True)
+
+    pattern = run_name(args.name)
+    if not os.path.isdir(args.out):
+        sys.exit(f"{args.out}: no such folder (the stores of --name "
+                 f"{args.name})")
+    runs = []
+    for name in sorted(os.listdir(args.out)):
+        m = pattern.match(name)
+        if m:
+            runs.append(arm_run(animat, os.path.join(args.out, name),
+                                name[:-3], int(m.group(1)), args.dest))
+    if not runs:
+        sys.exit(f"no stores {args.name}-seedS.db in {args.out}")
+    budget = runs[0]["budget"]
+    runs += partners_of(animat, args, runs[0]["config"])
 
     lines = [
         "| run | fitness | generations | best (generation) | distance | "
         "energy | distance per 1000 energy | energy-aware fitness | strategy |"
-        " period (steps) | amplitude | synchrony | coasting |",
-        "|---|---|---:|---|---:|---:|---:|---:|---|---:|---:|---:|---:|"]
+        " period (steps) | amplitude | synchrony | coasting | holding |",
+        "|---|---|---:|---|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|"]
     lines += [row(r) for r in runs]
     lines += ["", "| run | ok members, last generation | above the budget | "
               "median distance | median energy |", "|---|---:|---:|---:|---:|"]
@@ -226,13 +283,14 @@ def main():
                 f"| {r['name']} | {last['ok_members']} | "
                 f"{last['over_budget']} | {last['median_distance']:.2f} | "
                 f"{last['median_energy']:,.0f} |")
-    with open(os.path.join(args.dest, "energy.md"), "w") as f:
+    with open(os.path.join(args.dest, f"{args.report}.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
-    with open(os.path.join(args.dest, "energy.json"), "w") as f:
+    with open(os.path.join(args.dest, f"{args.report}.json"), "w") as f:
         json.dump({"budget": budget, "runs": runs}, f, indent=2)
         f.write("\n")
-    svg(runs, os.path.join(args.dest, "energy-dn1.svg"))
-    print(f"wrote {args.dest}/energy.md, energy.json, energy-dn1.svg")
+    svg(runs, os.path.join(args.dest, f"{args.name}.svg"))
+    print(f"wrote {args.dest}/{args.report}.md, {args.report}.json, "
+          f"{args.name}.svg")
 
 
 if __name__ == "__main__":

@@ -7,18 +7,22 @@ ends closer to all of them, its knock-outs (the chemical and each
 morphogen silenced during motion, `animat analyze --knockouts`), and per
 generation the share of the population that ends closer to every source.
 
-  scripts/guidance_report.py [--out out/guidance] [--dest docs/results]
-      [--animat build/bin/animat]
+  scripts/guidance_report.py [--name guidance] [--out out/NAME]
+      [--dest docs/results] [--animat build/bin/animat]
+
+NAME names the runs (default guidance): their stores are NAME-seedS.db,
+as scripts/seeded_runs.sh --name NAME or a campaign's runs named NAME
+write them (e.g. guidance-lead, configs/guidance-lead.txtpb).
 
 Only Python's standard library; the simulator work is done by `animat`
-(lineage, simulate, analyze, figure, render). Writes DEST/guidance.json
-(every number), DEST/guidance.md (the tables), for each run
-DEST/guidance-seedS-trials.svg (the best's K paths around their sources),
-DEST/guidance-seedS-untrained.svg (its paths with 2K sources, all in
+(lineage, simulate, analyze, figure, render). Writes DEST/NAME.json
+(every number), DEST/NAME.md (the tables), for each run
+DEST/NAME-seedS-trials.svg (the best's K paths around their sources),
+DEST/NAME-seedS-untrained.svg (its paths with 2K sources, all in
 directions between the K it evolved with),
 its score with the sources at other distances (FARTHER),
-DEST/guidance-seedS.html (the best's replay page, trial 0),
-DEST/guidance-fitness.svg (every run's best, mean and median score per
+DEST/NAME-seedS.html (the best's replay page, trial 0),
+DEST/NAME-fitness.svg (every run's best, mean and median score per
 generation) and the bests' genomes and models in DEST/bests/. A trial
 "ends closer" to its source when it ends at least CLOSER radii closer.
 A run still going is reported as far as it has gone.
@@ -35,7 +39,9 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import replication_report as rr  # noqa: E402  (its store and analysis code)
 
-RUN_NAME = re.compile(r"^guidance-seed([0-9]+)\.db$")
+def run_name(name):
+    """NAME-seedS.db: a store of the runs named NAME (seed S)."""
+    return re.compile("^" + re.escape(name) + r"-seed([0-9]+)\.db$")
 
 # A trial counts as ending closer to its source when it ends at least this
 # much closer (radii): a body that does not swim drifts by about 1e-8.
@@ -268,7 +274,11 @@ def tables(runs):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--out", default="out/guidance")
+    parser.add_argument("--name", default="guidance",
+                        help="the runs' name: stores NAME-seedS.db; writes "
+                        "NAME.md, NAME.json and NAME-fitness.svg")
+    parser.add_argument("--out", default=None,
+                        help="the stores' folder (default out/NAME)")
     parser.add_argument("--dest", default="docs/results")
     # This build's animat, not the runs' copy: knock-outs may be newer
     # than the runs, and each best is checked to give its stored fitness
@@ -276,28 +286,33 @@ def main():
     parser.add_argument("--animat", default="build/bin/animat")
     args = parser.parse_args()
     animat = args.animat
+    args.out = args.out or os.path.join("out", args.name)
+    pattern = run_name(args.name)
+    if not os.path.isdir(args.out):
+        sys.exit(f"{args.out}: no such folder (the stores of --name "
+                 f"{args.name})")
     os.makedirs(os.path.join(args.dest, "bests"), exist_ok=True)
 
     runs = []
     for name in sorted(os.listdir(args.out)):
-        m = RUN_NAME.match(name)
+        m = pattern.match(name)
         if m:
             runs.append(report_run(animat, os.path.join(args.out, name),
                                    name[:-3], int(m.group(1)), args.dest))
     if not runs:
-        sys.exit(f"no stores guidance-seedS.db in {args.out}")
+        sys.exit(f"no stores {args.name}-seedS.db in {args.out}")
     dbs = []
     for r in runs:
         dbs += ["--db", os.path.join(args.out, r["name"] + ".db")]
     rr.run([animat, "figure", "fitness", *dbs, "-o",
-            os.path.join(args.dest, "guidance-fitness.svg")])
-    with open(os.path.join(args.dest, "guidance.md"), "w") as f:
+            os.path.join(args.dest, f"{args.name}-fitness.svg")])
+    with open(os.path.join(args.dest, f"{args.name}.md"), "w") as f:
         f.write("\n".join(tables(runs)) + "\n")
-    with open(os.path.join(args.dest, "guidance.json"), "w") as f:
+    with open(os.path.join(args.dest, f"{args.name}.json"), "w") as f:
         json.dump({"runs": runs}, f, indent=2)
         f.write("\n")
-    print(f"wrote {args.dest}/guidance.md, guidance.json and each run's "
-          "figures and replay page")
+    print(f"wrote {args.dest}/{args.name}.md, {args.name}.json and each "
+          "run's figures and replay page")
 
 
 if __name__ == "__main__":

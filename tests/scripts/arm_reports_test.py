@@ -1,0 +1,139 @@
+#!/usr/bin/env python3
+"""scripts/energy_report.py and guidance_report.py on runs of another name
+(--name: the third replication's energy-holding and guidance-lead arms),
+each over a tiny evolution made here: the energy report compares its arm
+with the replication's d_N = 1 bests and an earlier energy report's bests,
+all under the arm's cost model (each checked against `animat simulate`
+under that model); the guidance report writes its files under the name.
+A folder without such stores is refused.
+
+  arm_reports_test.py ANIMAT
+"""
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(
+    os.path.abspath(__file__))))
+SCRIPTS = os.path.join(ROOT, "scripts")
+ANIMAT = None
+
+# Short motion and tiny populations: the reports' plumbing, not evolution.
+ENERGY_ARM = """
+model {
+  physics { drag_normal: 1 drag_tangential: 0.005 integrator: RK4
+            substeps: 1 contact_rule: NONE }
+  evaluation { fitness: DISTANCE_WITHIN_ENERGY_BUDGET energy_budget: 10000
+               holding_cost: 0.05 motion_steps: 600 }
+}
+evolution { seed: 7 population: 6 generations: 2 elite: 1 }
+"""
+GUIDANCE_ARM = """
+model {
+  guidance { enabled: true trials: 2 lead_steps: 200 }
+  evaluation { motion_steps: 600 }
+}
+evolution { seed: 3 population: 6 generations: 2 elite: 1 }
+"""
+
+
+def evolve(tmp, text, db):
+    config = os.path.join(tmp, "arm.txtpb")
+    with open(config, "w") as f:
+        f.write(text)
+    os.makedirs(os.path.dirname(db), exist_ok=True)
+    subprocess.run([ANIMAT, "evolve", "--config", config, "--db", db,
+                    "--workers", "1"], check=True, capture_output=True)
+
+
+def script(name, *args):
+    return subprocess.run([sys.executable, os.path.join(SCRIPTS, name),
+                           "--animat", ANIMAT, *args],
+                          capture_output=True, text=True, cwd=ROOT)
+
+
+def simulate(genome, config):
+    out = subprocess.run([ANIMAT, "simulate", "--genome", genome, "--config",
+                          config, "--json"], check=True, capture_output=True,
+                         text=True, cwd=ROOT)
+    return json.loads(out.stdout)
+
+
+class EnergyArmTest(unittest.TestCase):
+    def test_an_arm_against_its_partners_under_its_cost_model(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            stores = os.path.join(tmp, "stores")
+            evolve(tmp, ENERGY_ARM, os.path.join(stores, "holding-seed7.db"))
+            dest = os.path.join(tmp, "dest")
+            os.makedirs(dest)
+            shutil.copy(os.path.join(ROOT, "docs", "results",
+                                     "replication.json"), dest)
+            run = script("energy_report.py", "--name", "holding",
+                         "--report", "holding-report", "--out", stores,
+                         "--dest", dest, "--partners",
+                         os.path.join("docs", "results", "energy.json"))
+            self.assertEqual(run.returncode, 0, run.stderr)
+            with open(os.path.join(dest, "holding-report.json")) as f:
+                runs = json.load(f)["runs"]
+            kinds = [r["fitness_kind"] for r in runs]
+            self.assertEqual(kinds, ["energy"] + ["distance"] * 4 +
+                             ["energy (energy.json)"] * 3)
+            arm = runs[0]
+            self.assertEqual((arm["name"], arm["seed"]), ("holding-seed7", 7))
+            for name in ("holding-report.md", "holding.svg",
+                         "holding-seed7-strip.svg",
+                         "holding-seed7-activity.svg"):
+                self.assertTrue(os.path.isfile(os.path.join(dest, name)),
+                                name)
+            # Every partner as the arm's model counts it: the holding cost
+            # included.
+            for r in runs[1:]:
+                here = simulate(r["genome"], arm["config"])
+                own = simulate(r["genome"], r["genome"][:-len(".json")] +
+                               ".config.txtpb")
+                self.assertEqual(float.hex(r["energy_fitness"]),
+                                 float.hex(here["fitness"]), r["name"])
+                self.assertEqual(r["energy"], here["energy"])
+                self.assertGreater(r["energy"], 0.0)
+                self.assertEqual(r["fitness"], own["fitness"], r["name"])
+
+    def test_a_folder_without_stores_of_the_name(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            run = script("energy_report.py", "--name", "none", "--out", tmp,
+                         "--dest", tmp)
+            self.assertEqual(run.returncode, 1)
+            self.assertIn("no stores none-seedS.db", run.stderr)
+            run = script("energy_report.py", "--name", "none", "--out",
+                         os.path.join(tmp, "missing"), "--dest", tmp)
+            self.assertEqual(run.returncode, 1)
+            self.assertIn("no such folder", run.stderr)
+
+
+class GuidanceArmTest(unittest.TestCase):
+    def test_the_files_carry_the_runs_name(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            stores = os.path.join(tmp, "stores")
+            evolve(tmp, GUIDANCE_ARM, os.path.join(stores, "lead-seed3.db"))
+            dest = os.path.join(tmp, "dest")
+            run = script("guidance_report.py", "--name", "lead", "--out",
+                         stores, "--dest", dest)
+            self.assertEqual(run.returncode, 0, run.stderr)
+            for name in ("lead.md", "lead.json", "lead-fitness.svg",
+                         "lead-seed3-trials.svg", "lead-seed3.html"):
+                self.assertTrue(os.path.isfile(os.path.join(dest, name)),
+                                name)
+            with open(os.path.join(dest, "lead.json")) as f:
+                run_, = json.load(f)["runs"]
+            self.assertEqual(run_["name"], "lead-seed3")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) < 2:
+        sys.exit("usage: arm_reports_test.py ANIMAT")
+    ANIMAT = os.path.abspath(sys.argv.pop(1))
+    unittest.main()
