@@ -40,11 +40,6 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import replication_report as rr  # noqa: E402  (its store and analysis code)
 
-def run_name(name):
-    """NAME-seedS.db: a store of the runs named NAME (seed S)."""
-    return re.compile("^" + re.escape(name) + r"-seed([0-9]+)\.db$")
-
-
 def energy_extras(path, run_id, budget):
     """What the replication's summary lacks: distance and energy of the
     generations' bests and of the last generation's members."""
@@ -253,18 +248,8 @@ def main():
     animat = args.animat or os.path.join(args.out, "bin", "animat")
     os.makedirs(os.path.join(args.dest, "bests"), exist_ok=True)
 
-    pattern = run_name(args.name)
-    if not os.path.isdir(args.out):
-        sys.exit(f"{args.out}: no such folder (the stores of --name "
-                 f"{args.name})")
-    runs = []
-    for name in sorted(os.listdir(args.out)):
-        m = pattern.match(name)
-        if m:
-            runs.append(arm_run(animat, os.path.join(args.out, name),
-                                name[:-3], int(m.group(1)), args.dest))
-    if not runs:
-        sys.exit(f"no stores {args.name}-seedS.db in {args.out}")
+    runs = [arm_run(animat, path, name, seed, args.dest)
+            for path, name, seed in rr.seeded_stores(args.out, args.name)]
     budget = runs[0]["budget"]
     runs += partners_of(animat, args, runs[0]["config"])
 

@@ -39,10 +39,6 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import replication_report as rr  # noqa: E402  (its store and analysis code)
 
-def run_name(name):
-    """NAME-seedS.db: a store of the runs named NAME (seed S)."""
-    return re.compile("^" + re.escape(name) + r"-seed([0-9]+)\.db$")
-
 # A trial counts as ending closer to its source when it ends at least this
 # much closer (radii): a body that does not swim drifts by about 1e-8.
 CLOSER = 0.01
@@ -287,20 +283,10 @@ def main():
     args = parser.parse_args()
     animat = args.animat
     args.out = args.out or os.path.join("out", args.name)
-    pattern = run_name(args.name)
-    if not os.path.isdir(args.out):
-        sys.exit(f"{args.out}: no such folder (the stores of --name "
-                 f"{args.name})")
     os.makedirs(os.path.join(args.dest, "bests"), exist_ok=True)
 
-    runs = []
-    for name in sorted(os.listdir(args.out)):
-        m = pattern.match(name)
-        if m:
-            runs.append(report_run(animat, os.path.join(args.out, name),
-                                   name[:-3], int(m.group(1)), args.dest))
-    if not runs:
-        sys.exit(f"no stores {args.name}-seedS.db in {args.out}")
+    runs = [report_run(animat, path, name, seed, args.dest)
+            for path, name, seed in rr.seeded_stores(args.out, args.name)]
     dbs = []
     for r in runs:
         dbs += ["--db", os.path.join(args.out, r["name"] + ".db")]

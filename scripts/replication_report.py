@@ -46,6 +46,22 @@ def try_run(cmd, problems):
     return result.stdout
 
 
+def seeded_stores(folder, name):
+    """[(path, run name, seed)] of the stores NAME-seedS.db in FOLDER (as
+    scripts/seeded_runs.sh --name NAME or a campaign's runs named NAME
+    write them), in name order; exits saying why when FOLDER is missing or
+    holds none."""
+    if not os.path.isdir(folder):
+        sys.exit(f"{folder}: no such folder (the stores of --name {name})")
+    pattern = re.compile("^" + re.escape(name) + r"-seed([0-9]+)\.db$")
+    stores = [(os.path.join(folder, f), f[:-3], int(m.group(1)))
+              for f in sorted(os.listdir(folder))
+              for m in [pattern.match(f)] if m]
+    if not stores:
+        sys.exit(f"no stores {name}-seedS.db in {folder}")
+    return stores
+
+
 def model_text(config_text):
     """The `model { ... }` block of a RunConfig's text, as a Config's text."""
     start = config_text.index("model {")

@@ -307,13 +307,14 @@ def main():
     panels = draw_panels(args.animat, clearest(known), folders, args.dest,
                          problems)
 
+    per_condition = pooled(conditions, rows, features_of)
     with open(os.path.join(args.dest, "runs.json"), "w") as f:
         json.dump({"runs": rows, "panels": panels,
-                   "conditions": pooled(conditions, rows, features_of),
+                   "conditions": per_condition,
                    "problems": problems}, f, indent=1, sort_keys=True)
     with open(os.path.join(args.dest, "runs.md"), "w") as f:
         f.write(table(rows) + "\n" + claims_table(rows) + "\n" +
-                pooled_table(pooled(conditions, rows, features_of)))
+                pooled_table(per_condition))
     for problem in problems:
         print(problem, file=sys.stderr)
     print(f"{len(rows)} runs, {sum(r['replays'] for r in rows)} bests "
