@@ -106,9 +106,12 @@ TEST(CampaignFileTest, TheEnergyAndGuidanceCampaignHasTheirRuns) {
   std::vector<std::string> names;
   for (const CampaignRun& run : *runs) names.push_back(run.name);
   EXPECT_EQ(names,
-            (std::vector<std::string>{"energy-dn1-seed1", "energy-dn1-seed2",
-                                      "energy-dn1-seed3", "guidance-seed1",
-                                      "guidance-seed2", "guidance-seed3"}));
+            (std::vector<std::string>{
+                "energy-dn1-seed1", "energy-dn1-seed2", "energy-dn1-seed3",
+                "guidance-seed1", "guidance-seed2", "guidance-seed3",
+                "energy-holding-dn1-seed1", "energy-holding-dn1-seed2",
+                "energy-holding-dn1-seed3", "guidance-lead-seed1",
+                "guidance-lead-seed2", "guidance-lead-seed3"}));
   const v1::RunConfig& energy = runs->at(1).config;
   EXPECT_EQ(energy.model().evaluation().fitness(),
             v1::EvaluationConfig::DISTANCE_WITHIN_ENERGY_BUDGET);
@@ -119,6 +122,16 @@ TEST(CampaignFileTest, TheEnergyAndGuidanceCampaignHasTheirRuns) {
   EXPECT_TRUE(guidance.model().guidance().enabled());
   EXPECT_EQ(guidance.evolution().seed(), 3u);
   EXPECT_EQ(guidance.evolution().generations(), 100);
+  EXPECT_EQ(guidance.model().guidance().lead_steps(), 0);
+  // The third edition's arms: holding charged, the chemical on early.
+  const v1::RunConfig& holding = runs->at(7).config;
+  EXPECT_EQ(holding.model().evaluation().holding_cost(), 0.05);
+  EXPECT_EQ(holding.model().physics().contact_rule(), v1::PhysicsConfig::NONE);
+  EXPECT_EQ(holding.evolution().seed(), 2u);
+  const v1::RunConfig& lead = runs->at(11).config;
+  EXPECT_EQ(lead.model().guidance().lead_steps(), 200);
+  EXPECT_EQ(lead.evolution().seed(), 3u);
+  EXPECT_EQ(lead.evolution().generations(), 100);
 }
 
 // The replication's campaign names its runs as scripts/replicate.sh did,
@@ -149,6 +162,14 @@ TEST(CampaignFileTest, TheReplicationCampaignHasTheReplicationsRuns) {
       1.0);
   EXPECT_EQ(by_name.at("dn0.01-seed1")->config.model().physics().drag_normal(),
             0.01);
+  // The main runs were extended by raising their generations; the arms
+  // say it in the file.
+  EXPECT_EQ(dn10.evolution().extend_to(), 0);
+  for (const char* arm :
+       {"all-dn0.1-seed1", "kl1-dn0.1-seed4", "dn0.01-seed2"}) {
+    EXPECT_EQ(by_name.at(arm)->config.evolution().generations(), 150) << arm;
+    EXPECT_EQ(by_name.at(arm)->config.evolution().extend_to(), 250) << arm;
+  }
 }
 
 TEST(CampaignFileTest, MistakesAreRefusedNamingTheEntry) {
