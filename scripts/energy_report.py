@@ -9,7 +9,7 @@ bests over time.
 
   scripts/energy_report.py [--name energy-dn1] [--report energy]
       [--partners EARLIER.json ...] [--out out/NAME] [--dest docs/results]
-      [--animat out/NAME/bin/animat]
+      [--replication DEST/replication.json] [--animat out/NAME/bin/animat]
 
 NAME names the runs: their stores are NAME-seedS.db, as
 scripts/seeded_runs.sh --name NAME or a campaign's runs named NAME write
@@ -197,8 +197,7 @@ def partners_of(animat, args, arm_config):
     """The distance-only side (the replication's d_N = 1 runs and bests)
     and the runs of each --partners report, under the arm's model."""
     out = []
-    with open(os.path.join(args.dest, "replication.json")) as f:
-        replication = json.load(f)
+    replication = read_json(args.replication, "--replication")
     for r in replication["runs"]:
         if r["drag"] != 1:
             continue
@@ -210,8 +209,7 @@ def partners_of(animat, args, arm_config):
             analysis=r["best_analysis"],
             curve=[x["best_fitness"] for x in r["stats"]]))
     for path in args.partners:
-        with open(path) as f:
-            report = json.load(f)
+        report = read_json(path, "--partners")
         for r in report["runs"]:
             if r["fitness_kind"] != "energy":
                 continue
@@ -222,6 +220,20 @@ def partners_of(animat, args, arm_config):
                 fitness=r["fitness"], genome=r["genome"],
                 analysis=r["analysis"], curve=r["curve"]))
     return out
+
+
+def read_json(path, flag):
+    """The JSON object of a report named by FLAG; exits saying why when it
+    cannot be read or holds no runs."""
+    try:
+        with open(path) as f:
+            report = json.load(f)
+    except (OSError, ValueError) as e:
+        sys.exit(f"{flag} {path}: {e}")
+    if not isinstance(report, dict) or not isinstance(report.get("runs"),
+                                                      list):
+        sys.exit(f"{flag} {path}: not a report (no list of runs)")
+    return report
 
 
 def report_name(path):
@@ -242,14 +254,25 @@ def main():
     parser.add_argument("--out", default=None,
                         help="the stores' folder (default out/NAME)")
     parser.add_argument("--dest", default="docs/results")
+    parser.add_argument("--replication", default=None,
+                        help="the replication's report, whose d_N = 1 bests "
+                        "are the distance-only side (default "
+                        "DEST/replication.json)")
     parser.add_argument("--animat", default=None)
     args = parser.parse_args()
+    args.replication = args.replication or os.path.join(args.dest,
+                                                        "replication.json")
     args.out = args.out or os.path.join("out", args.name)
     animat = args.animat or os.path.join(args.out, "bin", "animat")
     os.makedirs(os.path.join(args.dest, "bests"), exist_ok=True)
 
+    stores = rr.seeded_stores(args.out, args.name)
+    # The reports compared with are read before any simulation.
+    for path, flag in [(args.replication, "--replication")] + [
+            (p, "--partners") for p in args.partners]:
+        read_json(path, flag)
     runs = [arm_run(animat, path, name, seed, args.dest)
-            for path, name, seed in rr.seeded_stores(args.out, args.name)]
+            for path, name, seed in stores]
     budget = runs[0]["budget"]
     runs += partners_of(animat, args, runs[0]["config"])
 

@@ -12,7 +12,6 @@ A folder without such stores is refused.
 
 import json
 import os
-import shutil
 import subprocess
 import sys
 import tempfile
@@ -70,12 +69,11 @@ class EnergyArmTest(unittest.TestCase):
             stores = os.path.join(tmp, "stores")
             evolve(tmp, ENERGY_ARM, os.path.join(stores, "holding-seed7.db"))
             dest = os.path.join(tmp, "dest")
-            os.makedirs(dest)
-            shutil.copy(os.path.join(ROOT, "docs", "results",
-                                     "replication.json"), dest)
             run = script("energy_report.py", "--name", "holding",
                          "--report", "holding-report", "--out", stores,
-                         "--dest", dest, "--partners",
+                         "--dest", dest, "--replication",
+                         os.path.join("docs", "results", "replication.json"),
+                         "--partners",
                          os.path.join("docs", "results", "energy.json"))
             self.assertEqual(run.returncode, 0, run.stderr)
             with open(os.path.join(dest, "holding-report.json")) as f:
@@ -112,6 +110,36 @@ class EnergyArmTest(unittest.TestCase):
                          os.path.join(tmp, "missing"), "--dest", tmp)
             self.assertEqual(run.returncode, 1)
             self.assertIn("no such folder", run.stderr)
+
+
+    def test_a_report_to_compare_with_that_cannot_be_read(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            stores = os.path.join(tmp, "stores")
+            os.makedirs(stores)
+            open(os.path.join(stores, "holding-seed1.db"), "w").close()
+            # No replication.json in DEST, and none named.
+            run = script("energy_report.py", "--name", "holding", "--out",
+                         stores, "--dest", tmp)
+            self.assertEqual(run.returncode, 1)
+            self.assertIn("--replication " + os.path.join(tmp,
+                          "replication.json"), run.stderr)
+            self.assertNotIn("Traceback", run.stderr)
+            bad = os.path.join(tmp, "bad.json")
+            with open(bad, "w") as f:
+                f.write("[1, 2")
+            run = script("energy_report.py", "--name", "holding", "--out",
+                         stores, "--dest", tmp, "--replication",
+                         os.path.join("docs", "results", "replication.json"),
+                         "--partners", bad)
+            self.assertEqual(run.returncode, 1)
+            self.assertIn("--partners " + bad, run.stderr)
+            self.assertNotIn("Traceback", run.stderr)
+            with open(bad, "w") as f:
+                f.write("{}")
+            run = script("energy_report.py", "--name", "holding", "--out",
+                         stores, "--dest", tmp, "--replication", bad)
+            self.assertEqual(run.returncode, 1)
+            self.assertIn("not a report", run.stderr)
 
 
 class GuidanceArmTest(unittest.TestCase):
