@@ -47,7 +47,8 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from replication_report import glide, spearman  # noqa: E402
 from replication_report import try_run as tool  # noqa: E402
-from strategy_report import natural_key, parse_pairs  # noqa: E402
+from strategy_report import (natural_key, parse_pairs,  # noqa: E402
+                             read_json_object, read_record)
 
 PANELS = ("strip", "activity", "cells")
 
@@ -64,8 +65,7 @@ def read_records(conditions):
             sys.exit(f"results_report.py: {name}: no run record matches "
                      f"{pattern!r}")
         for folder in folders:
-            with open(os.path.join(folder, "record.json")) as f:
-                out.append((name, folder, json.load(f)))
+            out.append((name, folder, read_record(folder)))
     return out
 
 
@@ -286,8 +286,8 @@ def main():
     os.makedirs(args.bests, exist_ok=True)
     best_label, phenotypes, features_of = {}, [], {}
     if args.strategies:
-        with open(args.strategies) as f:
-            best_label, phenotypes, features_of = labels_of(json.load(f))
+        best_label, phenotypes, features_of = labels_of(
+            read_json_object(args.strategies, ("conditions",)))
 
     problems, rows = [], []
     for name, folder, record in records:

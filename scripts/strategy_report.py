@@ -121,8 +121,26 @@ def is_record(source):
 
 
 def read_record(folder):
-    with open(os.path.join(folder, "record.json")) as f:
-        return json.load(f)
+    """FOLDER/record.json (scripts/run_record.py); exits saying why when it
+    cannot be read or is not a run record."""
+    return read_json_object(os.path.join(folder, "record.json"),
+                            ("run", "best", "statistics"))
+
+
+def read_json_object(path, keys):
+    """The JSON object in PATH, which must hold KEYS; exits naming the file
+    when it cannot be read, is not JSON, or lacks one of them."""
+    try:
+        with open(path) as f:
+            value = json.load(f)
+    except (OSError, ValueError) as e:
+        sys.exit(f"{path}: {e}")
+    if not isinstance(value, dict):
+        sys.exit(f"{path}: not a JSON object")
+    for key in keys:
+        if key not in value:
+            sys.exit(f"{path}: no {key!r}")
+    return value
 
 
 def stem_of(source):

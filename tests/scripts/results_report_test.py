@@ -127,6 +127,33 @@ class ReportTest(unittest.TestCase):
             with open(os.path.join(dest, "runs.json")) as f:
                 self.assertFalse(json.load(f)["runs"][0]["replays"])
 
+    def test_a_malformed_record_or_strategies_file_is_named(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            copy = os.path.join(tmp, "records", "v3-dn10-seed2")
+            shutil.copytree(RECORD, copy)
+            path = os.path.join(copy, "record.json")
+            for text, why in (('{"run": "x", ', "Expecting"),
+                              ('{"run": "x"}', "no 'best'"),
+                              ("[]", "not a JSON object")):
+                with open(path, "w") as f:
+                    f.write(text)
+                run, _, _ = self.report(copy, tmp)
+                self.assertEqual(run.returncode, 1, text)
+                self.assertIn(path, run.stderr)
+                self.assertIn(why, run.stderr)
+                self.assertNotIn("Traceback", run.stderr)
+            run = subprocess.run(
+                [sys.executable, os.path.join(ROOT, "scripts",
+                                              "results_report.py"),
+                 "--animat", ANIMAT, "--condition", f"c={RECORD}",
+                 "--strategies", os.path.join(tmp, "missing.json"),
+                 "--dest", os.path.join(tmp, "dest"),
+                 "--bests", os.path.join(tmp, "bests")],
+                capture_output=True, text=True, cwd=tmp)
+            self.assertEqual(run.returncode, 1)
+            self.assertIn("missing.json", run.stderr)
+            self.assertNotIn("Traceback", run.stderr)
+
 
 if __name__ == "__main__":
     if len(sys.argv) < 2:
