@@ -18,7 +18,12 @@ the energy-aware bests of each --partners report) is simulated under the
 arm's own model, so that distance, energy and energy-aware fitness are
 counted by one cost model: e.g. the energy-holding arm
 (configs/energy-holding.txtpb) against the work-only bests of
-docs/results/energy.json, with holding charged.
+docs/results/energy.json, with holding charged. Each is also analysed
+again by this build under its own model, so that every label in the
+table is the present classifier's. When the arm charges holding
+(evaluation.holding_cost c_h > 0), each row's energy E is split into the
+work W (E simulated with c_h = 0) and the held actuation per motion step,
+(E - W) / c_h / motion_steps (docs/model.md §10.1).
 
 Only Python's standard library; the simulator work is done by `animat`
 (lineage, simulate, analyze). Writes DEST/REPORT.json (every number),
@@ -36,6 +41,7 @@ import re
 import sqlite3
 import statistics
 import sys
+import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import replication_report as rr  # noqa: E402  (its store and analysis code)
@@ -75,12 +81,36 @@ def simulate(animat, genome, config):
     return {k: float(values[k]) for k in ("fitness", "distance", "energy")}
 
 
+def holding_cost_of(model_text):
+    m = re.search(r"holding_cost: ([0-9.e+-]+)", model_text)
+    return float(m.group(1)) if m else 0.0
+
+
+def split_energy(animat, genome, arm_config, energy):
+    """(work W, holding H per motion step) of a genome's energy E under the
+    arm's model, E = W + c_h H (docs/model.md §10.1): W is E simulated
+    with c_h = 0. (None, None) when the arm charges no holding."""
+    with open(arm_config) as f:
+        text = f.read()
+    c_h = holding_cost_of(text)
+    if c_h <= 0.0:
+        return None, None
+    steps = re.search(r"motion_steps: ([0-9]+)", text)
+    with tempfile.NamedTemporaryFile("w", suffix=".txtpb") as f:
+        f.write(re.sub(r"holding_cost: [0-9.e+-]+", "holding_cost: 0", text))
+        f.flush()
+        work = simulate(animat, genome, f.name)["energy"]
+    return work, (energy - work) / c_h / int(steps.group(1) if steps
+                                             else 6000)
+
+
 def budget_of(model_text):
     m = re.search(r"energy_budget: ([0-9.e+]+)", model_text)
     return float(m.group(1)) if m else 10000.0
 
 
-def row(r):
+def row(r, split):
+    """R's table row; with SPLIT, its work and holding columns too."""
     a = r["analysis"]
     f = a.get("features", {})
 
@@ -92,7 +122,9 @@ def row(r):
               if isinstance(a.get("period_steps"), (int, float)) else "—")
     return (f"| {r['name']} | {r['fitness_kind']} | {r['generations']} | "
             f"{r['best_id']} (g{r['best_generation']}) | "
-            f"{r['distance']:.2f} | {r['energy']:,.0f} | "
+            f"{r['distance']:.2f} | {r['energy']:,.0f} | " +
+            (f"{r['work']:,.0f} | {r['held_per_step']:.1f} | " if split
+             else "") +
             f"{1000 * r['distance'] / r['energy']:.2f} | "
             f"{r['energy_fitness']:.2f} | {a['label']} (nearest "
             f"{a['nearest']}) | {period} | "
@@ -171,7 +203,10 @@ def arm_run(animat, path, name, seed, dest):
     if float.hex(again["fitness"]) != float.hex(best["fitness"]):
         sys.exit(f"{stem}: simulated again, fitness {again['fitness']} "
                  f"is not the stored {best['fitness']}")
+    work, held = split_energy(animat, stem + ".json", stem + ".config.txtpb",
+                              again["energy"])
     return {
+        "work": work, "held_per_step": held,
         "name": name, "fitness_kind": "energy", "seed": seed,
         "budget": budget, "generations": s["generations"],
         "best_id": best["id"], "best_generation": best["generation"],
@@ -187,10 +222,18 @@ def arm_run(animat, path, name, seed, dest):
 def partner(animat, arm_config, kind, **fields):
     """A best evolved under another fitness, simulated under the arm's
     model (ARM_CONFIG): its distance, and its energy and fitness as this
-    arm's cost model counts them."""
+    arm's cost model counts them; and analysed again under its own model
+    by this build, so that its label is the present classifier's, as the
+    arm's are (the earlier report's analysis may be an earlier one's)."""
     here = simulate(animat, fields["genome"], arm_config)
+    own_config = fields["genome"][:-len(".json")] + ".config.txtpb"
+    work, held = split_energy(animat, fields["genome"], arm_config,
+                              here["energy"])
     return dict(fields, fitness_kind=kind, distance=here["distance"],
-                energy=here["energy"], energy_fitness=here["fitness"])
+                energy=here["energy"], energy_fitness=here["fitness"],
+                work=work, held_per_step=held,
+                analysis=rr.analyze_genome(animat, fields["genome"],
+                                           own_config))
 
 
 def partners_of(animat, args, arm_config):
@@ -206,7 +249,6 @@ def partners_of(animat, args, arm_config):
             generations=r["generations"], best_id=r["best"]["id"],
             best_generation=r["best"]["generation"],
             fitness=r["best"]["fitness"], genome=r["best_genome"],
-            analysis=r["best_analysis"],
             curve=[x["best_fitness"] for x in r["stats"]]))
     for path in args.partners:
         report = read_json(path, "--partners")
@@ -217,8 +259,7 @@ def partners_of(animat, args, arm_config):
                 animat, arm_config, f"energy ({report_name(path)}.json)",
                 name=r["name"], seed=r["seed"], generations=r["generations"],
                 best_id=r["best_id"], best_generation=r["best_generation"],
-                fitness=r["fitness"], genome=r["genome"],
-                analysis=r["analysis"], curve=r["curve"]))
+                fitness=r["fitness"], genome=r["genome"], curve=r["curve"]))
     return out
 
 
@@ -276,12 +317,16 @@ def main():
     budget = runs[0]["budget"]
     runs += partners_of(animat, args, runs[0]["config"])
 
+    # With a holding cost, E = W + c_h H is split into its two parts.
+    split = runs[0]["work"] is not None
     lines = [
         "| run | fitness | generations | best (generation) | distance | "
-        "energy | distance per 1000 energy | energy-aware fitness | strategy |"
+        "energy | " + ("work | held per step | " if split else "") +
+        "distance per 1000 energy | energy-aware fitness | strategy |"
         " period (steps) | amplitude | synchrony | coasting | holding |",
-        "|---|---|---:|---|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|"]
-    lines += [row(r) for r in runs]
+        "|---|---|---:|---|---:|---:|" + ("---:|---:|" if split else "") +
+        "---:|---:|---|---:|---:|---:|---:|---:|"]
+    lines += [row(r, split) for r in runs]
     lines += ["", "| run | ok members, last generation | above the budget | "
               "median distance | median energy |", "|---|---:|---:|---:|---:|"]
     for r in runs:

@@ -146,8 +146,21 @@ def write_best(animat, db, name, individual, model_text, dest):
 
 
 def analyze(animat, db, individual):
-    out = run([animat, "analyze", "--db", db, "--individual", str(individual),
-               "-o", "-"])
+    """`animat analyze` of an individual of a store, summarised."""
+    return analysis_of(run([animat, "analyze", "--db", db, "--individual",
+                            str(individual), "-o", "-"]))
+
+
+def analyze_genome(animat, genome, config):
+    """`animat analyze` of a genome file under a configuration file,
+    summarised as analyze() summarises a stored individual."""
+    return analysis_of(run([animat, "analyze", "--genome", genome,
+                            "--config", config, "-o", "-"]))
+
+
+def analysis_of(out):
+    """The label, nearest label, criteria, scores and features of `animat
+    analyze`'s JSON output."""
     a = json.loads(out)
     strategy = a.get("strategy", {})
     scores = {x["label"].lower(): x.get("score", 0.0)

@@ -88,6 +88,14 @@ class EnergyArmTest(unittest.TestCase):
                          "holding-seed7-activity.svg"):
                 self.assertTrue(os.path.isfile(os.path.join(dest, name)),
                                 name)
+            # E = W + c_h H, split for every row: W is E without holding.
+            for r in runs:
+                self.assertLessEqual(r["work"], r["energy"], r["name"])
+                self.assertAlmostEqual(
+                    r["work"] + 0.05 * r["held_per_step"] * 600, r["energy"],
+                    delta=1e-9 * r["energy"], msg=r["name"])
+            with open(os.path.join(dest, "holding-report.md")) as f:
+                self.assertIn("| work | held per step |", f.read())
             # Every partner as the arm's model counts it: the holding cost
             # included.
             for r in runs[1:]:
@@ -99,6 +107,24 @@ class EnergyArmTest(unittest.TestCase):
                 self.assertEqual(r["energy"], here["energy"])
                 self.assertGreater(r["energy"], 0.0)
                 self.assertEqual(r["fitness"], own["fitness"], r["name"])
+
+    def test_an_arm_without_a_holding_cost_has_no_split(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            stores = os.path.join(tmp, "stores")
+            evolve(tmp, ENERGY_ARM.replace("holding_cost: 0.05",
+                                           "holding_cost: 0"),
+                   os.path.join(stores, "work-seed7.db"))
+            dest = os.path.join(tmp, "dest")
+            run = script("energy_report.py", "--name", "work", "--out",
+                         stores, "--dest", dest, "--replication",
+                         os.path.join("docs", "results", "replication.json"))
+            self.assertEqual(run.returncode, 0, run.stderr)
+            with open(os.path.join(dest, "energy.json")) as f:
+                runs = json.load(f)["runs"]
+            self.assertTrue(all(r["work"] is None and
+                                r["held_per_step"] is None for r in runs))
+            with open(os.path.join(dest, "energy.md")) as f:
+                self.assertNotIn("held per step", f.read())
 
     def test_a_folder_without_stores_of_the_name(self):
         with tempfile.TemporaryDirectory() as tmp:
