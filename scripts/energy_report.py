@@ -45,6 +45,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import replication_report as rr  # noqa: E402  (its store and analysis code)
+from strategy_report import read_json_object  # noqa: E402
 
 def energy_extras(path, run_id, budget):
     """What the replication's summary lacks: distance and energy of the
@@ -240,7 +241,8 @@ def partners_of(animat, args, arm_config):
     """The distance-only side (the replication's d_N = 1 runs and bests)
     and the runs of each --partners report, under the arm's model."""
     out = []
-    replication = read_json(args.replication, "--replication")
+    replication = read_json_object(args.replication, ("runs",),
+                                   "--replication")
     for r in replication["runs"]:
         if r["drag"] != 1:
             continue
@@ -251,7 +253,7 @@ def partners_of(animat, args, arm_config):
             fitness=r["best"]["fitness"], genome=r["best_genome"],
             curve=[x["best_fitness"] for x in r["stats"]]))
     for path in args.partners:
-        report = read_json(path, "--partners")
+        report = read_json_object(path, ("runs",), "--partners")
         for r in report["runs"]:
             if r["fitness_kind"] != "energy":
                 continue
@@ -261,20 +263,6 @@ def partners_of(animat, args, arm_config):
                 best_id=r["best_id"], best_generation=r["best_generation"],
                 fitness=r["fitness"], genome=r["genome"], curve=r["curve"]))
     return out
-
-
-def read_json(path, flag):
-    """The JSON object of a report named by FLAG; exits saying why when it
-    cannot be read or holds no runs."""
-    try:
-        with open(path) as f:
-            report = json.load(f)
-    except (OSError, ValueError) as e:
-        sys.exit(f"{flag} {path}: {e}")
-    if not isinstance(report, dict) or not isinstance(report.get("runs"),
-                                                      list):
-        sys.exit(f"{flag} {path}: not a report (no list of runs)")
-    return report
 
 
 def report_name(path):
@@ -311,7 +299,7 @@ def main():
     # The reports compared with are read before any simulation.
     for path, flag in [(args.replication, "--replication")] + [
             (p, "--partners") for p in args.partners]:
-        read_json(path, flag)
+        read_json_object(path, ("runs",), flag)
     runs = [arm_run(animat, path, name, seed, args.dest)
             for path, name, seed in stores]
     budget = runs[0]["budget"]

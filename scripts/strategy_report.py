@@ -127,19 +127,21 @@ def read_record(folder):
                             ("run", "best", "statistics"))
 
 
-def read_json_object(path, keys):
+def read_json_object(path, keys, flag=None):
     """The JSON object in PATH, which must hold KEYS; exits naming the file
-    when it cannot be read, is not JSON, or lacks one of them."""
+    (after FLAG, the option that named it, if given) when it cannot be
+    read, is not JSON, or lacks one of them."""
+    where = f"{flag} {path}" if flag else path
     try:
         with open(path) as f:
             value = json.load(f)
     except (OSError, ValueError) as e:
-        sys.exit(f"{path}: {e}")
+        sys.exit(f"{where}: {e}")
     if not isinstance(value, dict):
-        sys.exit(f"{path}: not a JSON object")
+        sys.exit(f"{where}: not a JSON object")
     for key in keys:
         if key not in value:
-            sys.exit(f"{path}: no {key!r}")
+            sys.exit(f"{where}: no {key!r}")
     return value
 
 

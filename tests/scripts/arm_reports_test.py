@@ -165,7 +165,7 @@ class EnergyArmTest(unittest.TestCase):
             run = script("energy_report.py", "--name", "holding", "--out",
                          stores, "--dest", tmp, "--replication", bad)
             self.assertEqual(run.returncode, 1)
-            self.assertIn("not a report", run.stderr)
+            self.assertIn("no 'runs'", run.stderr)
 
 
 class GuidanceArmTest(unittest.TestCase):
