@@ -6,8 +6,8 @@ replay unchanged (docs/model.md §7.10, §12).
 
 The stored fitness of each best is the one its report recorded from the
 run's lineage store: docs/results/replication.json, energy.json,
-guidance.json, third/runs.json and, once written, energy-holding.json and
-guidance-lead.json. Every run record in
+guidance.json, third/runs.json (the main runs), arms/runs.json (the arms)
+and, once written, energy-holding.json and guidance-lead.json. Every run record in
 docs/results/runs/ (scripts/run_record.py) holds its best and top
 phenotypes with the fitness and final-state hash its store recorded: each
 must give both again.
@@ -42,13 +42,14 @@ def stored_bests():
             with open(path) as f:
                 for run in json.load(f)["runs"]:
                     out.append((run["genome"], run["fitness"]))
-    # The third edition's bests, copied from their run records by
-    # scripts/results_report.py.
-    third = os.path.join(results, "third", "runs.json")
-    if os.path.isfile(third):
-        with open(third) as f:
-            for run in json.load(f)["runs"]:
-                out.append((run["best_genome"], run["best"]["fitness"]))
+    # The third edition's bests, main runs and arms, copied from their run
+    # records by scripts/results_report.py.
+    for folder in ("third", "arms"):
+        path = os.path.join(results, folder, "runs.json")
+        if os.path.isfile(path):
+            with open(path) as f:
+                for run in json.load(f)["runs"]:
+                    out.append((run["best_genome"], run["best"]["fitness"]))
     return out
 
 
