@@ -1,5 +1,6 @@
 #include "master/campaign/campaign_session.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
@@ -64,11 +65,13 @@ Status PlanRun(const CampaignRun& run, const std::string& dir,
                                 : PlanResume(store->get(), run.settings,
                                              /*force=*/false, generations);
   if (!planned.ok()) return planned.status().WithPrefix(where);
-  if (planned->generations_made > generations) {
+  // A run that went on while improving (extend_to) may hold more than
+  // `generations`; EvolutionRun decides its length again from its bests.
+  const int most = EvolutionMaxLength(planned->settings.evolution);
+  if (planned->generations_made > most) {
     return Status::InvalidArgument(
         where + ": the store has " + std::to_string(planned->generations_made) +
-        " generations, more than the campaign file's " +
-        std::to_string(generations));
+        " generations, more than the campaign file's " + std::to_string(most));
   }
   if (planned->run_id != 0 && planned->state == "finished" &&
       !planned->update_config) {
@@ -133,8 +136,14 @@ class CampaignLine {
     int made = 0;
     int left = 0;
     for (const auto& run : plan_.active) {
+      const EvolutionParams& p = run->plan.settings.evolution;
+      const bool over = run->done && run->run->finished();
+      // Past `generations` and not over, a run has decided to go on.
+      const int length = !over && run->generation >= p.generations
+                             ? EvolutionMaxLength(p)
+                             : p.generations;
       made += run->generation;
-      left += run->plan.settings.evolution.generations - run->generation;
+      left += over ? 0 : std::max(0, length - run->generation);
     }
     const double elapsed = now - started_;
     const int since = made - start_generations_;

@@ -119,6 +119,10 @@ bool EvolutionExtends(const EvolutionParams& p) {
   return p.extend_to > p.generations;
 }
 
+int EvolutionMaxLength(const EvolutionParams& p) {
+  return EvolutionExtends(p) ? p.extend_to : p.generations;
+}
+
 int EvolutionLength(const EvolutionParams& p, std::optional<double> best_last,
                     std::optional<double> best_before) {
   if (!EvolutionExtends(p) || !best_last) return p.generations;

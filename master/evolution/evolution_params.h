@@ -76,6 +76,9 @@ int EvolutionLength(const EvolutionParams& params,
 // generation generations - 1 is among them.
 int EvolutionLength(const EvolutionParams& params,
                     std::span<const std::optional<double>> best_by_generation);
+// The most generations a run of `params` can make: extend_to when it
+// extends, otherwise `generations`.
+int EvolutionMaxLength(const EvolutionParams& params);
 
 // Every parameter's line of a run configuration ("model.physics.mass",
 // "evolution.elite", ...) for `animat config defaults --run`.

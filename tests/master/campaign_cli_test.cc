@@ -150,6 +150,45 @@ TEST_F(CampaignCliTest, RunsStillImprovingGoOnAndStatusCountsToTheirEnd) {
   }
 }
 
+// A run that goes on while improving, killed past its `generations`,
+// resumes to the run made alone, and once finished it is left alone: the
+// campaign file's `generations` is not its length.
+TEST_F(CampaignCliTest, AnExtensionKilledOnTheWayResumesAndThenStaysFinished) {
+  TestRun base;
+  base.generations = 4;
+  base.motion_steps = kMotionStepsForSlowGenerations;
+  WriteConfig("base.txtpb", base);
+  ASSERT_TRUE(WriteFile(Path("campaign.txtpb"),
+                        "runs { name: \"x\" config: \"base.txtpb\" set: "
+                        "\"evolution { extend_to: 7 extend_window: 1 }\" "
+                        "seeds: [10] }\n")
+                  .ok());
+  std::unique_ptr<ChildProcess> campaign = StartCampaign();
+  // Seed 10 is still improving at generation 3, so it goes on to 7.
+  ASSERT_TRUE(AwaitStore(
+      Store("x-seed10"),
+      [](const Progress& p) { return p.complete_generations >= 5; }, *campaign))
+      << campaign->output();
+  ASSERT_TRUE(campaign->Signal(SIGKILL));
+  ASSERT_TRUE(AwaitExit(*campaign, kStepWait, "SIGKILL"));
+  ASSERT_FALSE(ReadProgress(Store("x-seed10")).finished)
+      << "the run ended before it was killed: the test needs a slower run";
+
+  CampaignToEnd();
+  TestRun alone = base;
+  alone.seed = 10;
+  alone.evolution_extra = "extend_to: 7 extend_window: 1";
+  const StoreContents made = ReadStoreContents(Store("x-seed10"));
+  ExpectSameContents(Alone("x-seed10", alone), made);
+  EXPECT_EQ(ReadProgress(Store("x-seed10")).complete_generations, 7);
+
+  const std::string again = CampaignToEnd();
+  EXPECT_NE(again.find("the campaign is finished: its 1 runs"),
+            std::string::npos)
+      << again;
+  ExpectSameContents(made, ReadStoreContents(Store("x-seed10")));
+}
+
 // animat-master --campaign serves workers started elsewhere (here, on the
 // test's endpoint) as it serves one run's.
 TEST_F(CampaignCliTest, AnimatMasterServesACampaignToWorkersItDidNotStart) {

@@ -61,6 +61,7 @@ struct TestRun {
   int population = 20;
   int generations = 6;
   int motion_steps = 200;
+  std::string evolution_extra;  // More fields of the evolution block.
 
   std::string Text() const {
     return "model {\n"
@@ -75,8 +76,8 @@ struct TestRun {
            "\n  population: " + std::to_string(population) +
            "\n  generations: " + std::to_string(generations) +
            "\n  elite: 2\n"
-           "  initial_min_fitness: 0\n"
-           "}\n";
+           "  initial_min_fitness: 0\n  " +
+           evolution_extra + "\n}\n";
   }
 };
 

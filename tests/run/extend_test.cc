@@ -137,8 +137,12 @@ TEST(ExtendTest, LengthIsGenerationsUnlessStillImproving) {
   p.generations = 150;
   EXPECT_FALSE(EvolutionExtends(p));
   EXPECT_EQ(EvolutionLength(p, 2.0, 1.0), 150);  // extend_to 0: never.
+  EXPECT_EQ(EvolutionMaxLength(p), 150);
+  p.extend_to = 100;  // Not beyond: extends nothing.
+  EXPECT_EQ(EvolutionMaxLength(p), 150);
   p.extend_to = 250;
   EXPECT_TRUE(EvolutionExtends(p));
+  EXPECT_EQ(EvolutionMaxLength(p), 250);
   EXPECT_EQ(EvolutionLength(p, 2.0, 1.0), 250);
   EXPECT_EQ(EvolutionLength(p, 1.0, 1.0), 150);           // The same best: not.
   EXPECT_EQ(EvolutionLength(p, 1.0, std::nullopt), 250);  // None before.
