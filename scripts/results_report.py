@@ -26,9 +26,10 @@ page for one phenotype of each label that scripts/strategy_report.py found.
   each phenotype (simulated); how the best's centre of mass moves within
   its strokes (steps moving backward, quiet steps and the speed while
   quiet: replication_report.py's glide); with --strategies, Spearman's
-  rank correlation of amplitude and frequency over the run's phenotypes;
-  and pooled per condition, that correlation and the phenotypes'
-  amplitudes.
+  rank correlation of amplitude and frequency over the run's phenotypes
+  ("undefined", null in the JSON, when they share one amplitude or one
+  period); and pooled per condition, that correlation and the
+  phenotypes' amplitudes.
 
 Writes DEST/runs.json (every number), DEST/runs.md (the tables),
 DEST/fitness-CONDITION.svg and the panels. Exit 0 when every best replays
@@ -39,6 +40,7 @@ library only.
 import argparse
 import glob
 import json
+import math
 import os
 import shutil
 import statistics
@@ -147,14 +149,22 @@ def cells_of(animat, folder, genome, problems):
 
 
 def trade(points):
-    """Spearman's rho of amplitude against frequency (None below three
-    points) over phenotypes with both."""
+    """Spearman's rho of amplitude against frequency over phenotypes with
+    both, and their count: None below three points, or when every point
+    has the same amplitude or the same period (no ranks to correlate)."""
     points = [p for p in points if p["period_steps"] and
               p["amplitude_mean"] is not None]
     if len(points) < 3:
         return None, len(points)
-    return spearman([p["amplitude_mean"] for p in points],
-                    [1.0 / p["period_steps"] for p in points]), len(points)
+    rho = spearman([p["amplitude_mean"] for p in points],
+                   [1.0 / p["period_steps"] for p in points])
+    return (None if math.isnan(rho) else rho), len(points)
+
+
+def rho_text(rho, n):
+    """A Spearman cell: the value, "—" below three points, "undefined"
+    when one variable is constant."""
+    return "undefined" if rho is None and n >= 3 else number(rho, "+.2f")
 
 
 def claims_of(animat, folder, record, stem, features, problems):
@@ -252,7 +262,8 @@ def claims_table(rows):
             f"{len(cells)} | {number(g.get('backward_share'), '.0%')} | "
             f"{number(g.get('quiet_share'), '.0%')} | "
             f"{number(g.get('quiet_speed'), '+.2f')} | "
-            f"{number(rho, '+.2f')} ({c['spearman_points']}) |")
+            f"{rho_text(rho, c['spearman_points'])} "
+            f"({c['spearman_points']}) |")
     return "\n".join(lines) + "\n"
 
 
@@ -262,7 +273,8 @@ def pooled_table(conditions):
              "|---|---:|---:|---|"]
     for name, c in conditions.items():
         lines.append(
-            f"| {name} | {number(c['spearman_amplitude_frequency'], '+.2f')}"
+            f"| {name} | "
+            f"{rho_text(c['spearman_amplitude_frequency'], c['phenotypes'])}"
             f" | {c['phenotypes']} | {number(c['amplitude_median'], '.2f')}, "
             f"{number(c['amplitude_max'], '.2f')} |")
     return "\n".join(lines) + "\n"
@@ -311,7 +323,8 @@ def main():
     with open(os.path.join(args.dest, "runs.json"), "w") as f:
         json.dump({"runs": rows, "panels": panels,
                    "conditions": per_condition,
-                   "problems": problems}, f, indent=1, sort_keys=True)
+                   "problems": problems}, f, indent=1, sort_keys=True,
+                  allow_nan=False)
     with open(os.path.join(args.dest, "runs.md"), "w") as f:
         f.write(table(rows) + "\n" + claims_table(rows) + "\n" +
                 pooled_table(per_condition))

@@ -38,6 +38,15 @@ class TradeTest(unittest.TestCase):
                   for p, a in ((100, 0.1), (50, 0.2), (25, 0.3), (None, 1))]
         self.assertEqual(rr.trade(points), (1.0, 3))
         self.assertEqual(rr.trade(points[:2]), (None, 2))
+        self.assertEqual(rr.rho_text(None, 2), "—")
+
+    def test_one_period_for_all_is_undefined_not_nan(self):
+        # Five relatives with one period: no ranks to correlate.
+        points = [{"period_steps": 80, "amplitude_mean": a}
+                  for a in (0.1, 0.2, 0.3, 0.4, 0.5)]
+        self.assertEqual(rr.trade(points), (None, 5))
+        self.assertEqual(rr.rho_text(None, 5), "undefined")
+        self.assertEqual(rr.rho_text(-0.5, 5), "-0.50")
 
 
 class ChoiceTest(unittest.TestCase):
