@@ -25,7 +25,9 @@ cells overlap in every store.
   one Kruskal-Wallis test over all its conditions.
 - The phenotypes of one run are relatives, not independent draws: the
   tables also count, per condition, the runs whose best carries each
-  label, and the runs with at least one phenotype of it.
+  label, and the runs with at least one phenotype of it; and each
+  comparison's Fisher tests are made again over runs, each run counted
+  once by its best's label.
 - Overlap: per store, by SQL, the ok individuals and how many have a
   deepest unjoined overlap (docs/model.md §8.6) above --overlap-bound.
 
@@ -261,23 +263,38 @@ def summarise(name, runs, members):
             "labels": labels}
 
 
-def compare(names, members_of):
-    """Fisher per label over every pair (Holm within the label), and
-    Kruskal-Wallis per feature over all the named conditions."""
+def fisher_pairs(names, labels_of):
+    """Per label, Fisher's exact test of every pair of conditions (label
+    against the rest of `labels_of[condition]`), Holm-adjusted within the
+    label."""
     pairs = [(a, b) for i, a in enumerate(names) for b in names[i + 1:]]
     fisher = {}
     for label in LABELS:
         tests = []
         for a, b in pairs:
-            ka = sum(1 for p in members_of[a] if p["label"] == label)
-            kb = sum(1 for p in members_of[b] if p["label"] == label)
-            table = [[ka, len(members_of[a]) - ka],
-                     [kb, len(members_of[b]) - kb]]
+            ka = sum(1 for x in labels_of[a] if x == label)
+            kb = sum(1 for x in labels_of[b] if x == label)
+            table = [[ka, len(labels_of[a]) - ka],
+                     [kb, len(labels_of[b]) - kb]]
             tests.append({"a": a, "b": b, "table": table,
                           "p": stats.fisher_exact(table)})
         for t, adjusted in zip(tests, stats.holm([t["p"] for t in tests])):
             t["p_holm"] = adjusted
         fisher[label] = tests
+    return fisher
+
+
+def compare(names, members_of, runs_of=None):
+    """Fisher per label over every pair (Holm within the label) over
+    phenotypes and, with `runs_of`, over runs by their best's label (a
+    run's phenotypes are relatives: the runs are the independent units);
+    and Kruskal-Wallis per feature over all the named conditions."""
+    fisher = fisher_pairs(names, {c: [p["label"] for p in members_of[c]]
+                                  for c in names})
+    fisher_runs = None
+    if runs_of is not None:
+        fisher_runs = fisher_pairs(
+            names, {c: [r["best_label"] for r in runs_of[c]] for c in names})
     kruskal = {}
     for feature in FEATURES:
         groups = [[p["features"][feature] for p in members_of[c]
@@ -289,7 +306,8 @@ def compare(names, members_of):
                                 "medians": [median(g) for g in groups]}
         else:
             kruskal[feature] = None
-    return {"conditions": names, "fisher": fisher, "kruskal_wallis": kruskal}
+    return {"conditions": names, "fisher": fisher, "fisher_runs": fisher_runs,
+            "kruskal_wallis": kruskal}
 
 
 def median(values):
@@ -317,20 +335,25 @@ def markdown(report, bound):
         out.append(f"| {s['name']} | {s['runs']} | {s['phenotypes']} | " +
                    " | ".join(cells) + " |")
     out.append("")
-    out.append("| comparison | label | pair | counts (label, rest) | Fisher p "
-               "| Holm p |")
-    out.append("|---|---|---|---|---:|---:|")
-    for c in report["comparisons"]:
-        title = " vs ".join(c["conditions"])
-        for label in LABELS:
-            for t in c["fisher"][label]:
-                (ka, ra), (kb, rb) = t["table"]
-                if ka + kb == 0:
-                    continue  # Neither has the label: nothing to test.
-                out.append(f"| {title} | {label} | {t['a']} / {t['b']} | "
-                           f"{ka}, {ra} / {kb}, {rb} | {p_text(t['p'])} | "
-                           f"{p_text(t['p_holm'])} |")
-    out.append("")
+    for key, units in (("fisher", "phenotypes"),
+                       ("fisher_runs", "runs, by their best's label")):
+        comparisons = [c for c in report["comparisons"] if c.get(key)]
+        if not comparisons:
+            continue
+        out.append(f"| comparison ({units}) | label | pair | counts (label, "
+                   "rest) | Fisher p | Holm p |")
+        out.append("|---|---|---|---|---:|---:|")
+        for c in comparisons:
+            title = " vs ".join(c["conditions"])
+            for label in LABELS:
+                for t in c[key][label]:
+                    (ka, ra), (kb, rb) = t["table"]
+                    if ka + kb == 0:
+                        continue  # Neither has the label: nothing to test.
+                    out.append(f"| {title} | {label} | {t['a']} / {t['b']} | "
+                               f"{ka}, {ra} / {kb}, {rb} | {p_text(t['p'])} "
+                               f"| {p_text(t['p_holm'])} |")
+        out.append("")
     out.append("| comparison | feature | medians | H | p |")
     out.append("|---|---|---|---:|---:|")
     for c in report["comparisons"]:
@@ -416,7 +439,7 @@ def main():
         if len(names) < 2 or unknown:
             sys.exit(f"strategy_report.py: --compare {spec!r}: two or more "
                      f"known conditions wanted (unknown: {unknown})")
-        comparisons.append(compare(names, members_of))
+        comparisons.append(compare(names, members_of, runs_of))
     report = {
         "top": args.top,
         "overlap_bound": args.overlap_bound,

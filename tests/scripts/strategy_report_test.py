@@ -63,6 +63,24 @@ class StrategyReportTest(unittest.TestCase):
         # A feature no phenotype has is not tested.
         self.assertIsNone(c["kruskal_wallis"]["elongation"])
 
+    def test_comparison_over_runs_counts_each_run_once(self):
+        runs = {"A": [{"best_label": "turtle"}, {"best_label": "turtle"}],
+                "B": [{"best_label": "other"}]}
+        c = sr.compare(["A", "B"], {"A": self.a, "B": self.b}, runs)
+        turtle, = c["fisher_runs"]["turtle"]
+        self.assertEqual(turtle["table"], [[2, 0], [0, 1]])
+        self.assertAlmostEqual(turtle["p"],
+                               stats.fisher_exact([[2, 0], [0, 1]]))
+        # Over phenotypes as before.
+        self.assertEqual(c["fisher"]["turtle"][0]["table"], [[3, 1], [0, 2]])
+        self.assertIsNone(sr.compare(["A", "B"],
+                                     {"A": self.a, "B": self.b})["fisher_runs"])
+        text = sr.markdown({"conditions": [], "summaries": [],
+                            "comparisons": [c]}, 0.1)
+        self.assertIn("| comparison (runs, by their best's label) |", text)
+        self.assertIn("| A vs B | turtle | A / B | 2, 0 / 0, 1 |", text)
+        self.assertIn("| A vs B | turtle | A / B | 3, 1 / 0, 2 |", text)
+
     def test_three_conditions_are_holm_adjusted_per_label(self):
         c = sr.compare(["A", "B", "C"],
                        {"A": self.a, "B": self.b, "C": self.b})
