@@ -632,4 +632,10 @@ EvaluationResult Evaluate(const Genome& genome, const ModelConfig& config,
   return Pipeline<double>(network, config, observer, options).Run();
 }
 
+std::optional<std::string> EvaluationKey(const Genome& genome,
+                                         const ModelConfig& config) {
+  if (!ValidateGenome(genome).ok()) return std::nullopt;
+  return Network::Build(genome, config.grn).Key();
+}
+
 }  // namespace animat

@@ -170,6 +170,15 @@ EvaluationResult Evaluate(const Genome& genome, const ModelConfig& config,
                           EvaluationObserver* observer = nullptr,
                           const EvaluateOptions& options = {});
 
+// What Evaluate reads of `genome` under `config`: its network's Key
+// (common/grn/network.h), or nullopt for a genome that is not valid
+// (ValidateGenome), whose evaluation names its fault. Two genomes with
+// equal keys evaluate, under `config`, to the same result bit for bit
+// (default options): the master records one's evaluation for the other
+// (docs/lineage.md). Thread-safe.
+std::optional<std::string> EvaluationKey(const Genome& genome,
+                                         const ModelConfig& config);
+
 }  // namespace animat
 
 #endif  // ANIMAT_COMMON_EVALUATION_EVALUATOR_H_

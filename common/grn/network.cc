@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <string>
 
 #include "common/base/fast_math.h"
 
@@ -206,6 +208,54 @@ Network Network::Build(const Genome& genome, const GrnParams& params) {
   net.input_source_count_ =
       static_cast<int>(input_rows.size() + chemical_rows.size());
   return net;
+}
+
+namespace {
+
+template <typename T>
+void Append(std::string* out, T value) {
+  out->append(reinterpret_cast<const char*>(&value), sizeof(value));
+}
+
+void AppendInts(std::string* out, const std::vector<int>& values) {
+  Append<uint64_t>(out, values.size());
+  for (int v : values) Append<int32_t>(out, v);
+}
+
+}  // namespace
+
+std::string Network::Key() const {
+  std::string key;
+  Append<uint64_t>(&key, nodes_.size());
+  for (const Node& n : nodes_) {
+    Append<uint8_t>(&key, static_cast<uint8_t>(n.kind));
+    Append<int32_t>(&key, n.channel);
+    Append<uint8_t>(&key, n.makes_internal);
+    Append<uint8_t>(&key, n.makes_morphogen);
+    Append<int32_t>(&key, n.morphogen);
+    Append<uint8_t>(&key, n.regions.empty());
+    Append<uint8_t>(&key, n.factors.empty());
+  }
+  AppendInts(&key, morphogen_nodes_);
+  for (const std::vector<int>& channel : input_nodes_)
+    AppendInts(&key, channel);
+  for (const std::vector<int>& channel : output_nodes_) {
+    AppendInts(&key, channel);
+  }
+  Append<uint64_t>(&key, sources_.size());
+  for (const Source& s : sources_) {
+    Append<uint8_t>(&key, static_cast<uint8_t>(s.kind));
+    Append<int32_t>(&key, s.node);
+  }
+  AppendInts(&key, targets_);
+  AppendInts(&key, row_begin_);
+  AppendInts(&key, weight_target_);
+  Append<uint64_t>(&key, weight_value_.size());
+  for (double w : weight_value_) Append<double>(&key, w);  // Its bits.
+  Append<int32_t>(&key, input_source_count_);
+  Append<int32_t>(&key, static_input_source_count_);
+  for (const std::vector<int>& next : successors_) AppendInts(&key, next);
+  return key;
 }
 
 double Network::Weight(SourceKind kind, int from, int to) const {

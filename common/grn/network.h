@@ -116,6 +116,15 @@ class Network {
   // input to an EXPAND or CONTRACT output.
   Viability CheckViability() const;
 
+  // Everything of the network but where its nodes' elements sit in the
+  // genome, as bytes: the nodes' kinds, channels and factor kinds, the
+  // channel and morphogen lists, the weights (their bits) and the binding
+  // graph. Two genomes whose networks have equal keys differ only where
+  // nothing reads them (a P element that binds nothing, an element moved),
+  // so, under one model configuration, they evaluate to the same result
+  // bit for bit (EvaluationKey in common/evaluation/evaluator.h).
+  std::string Key() const;
+
   // Which nodes can influence an output node of one of `channels`: the
   // output nodes themselves and every node with a path to one in the
   // binding graph. Indexed by node.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "common/evaluation/evaluator.h"
 #include "common/genome/genome_proto.h"
 #include "common/protocol/genome_wire.h"
 #include "common/protocol/protocol.h"
@@ -426,22 +427,27 @@ Status EvolutionRun::MakeGeneration(
       members.size() < population ? population - members.size() : 0;
   for (size_t i = 0; i < count; ++i) members.push_back(*next + i);
 
-  // The parents by genome, the lowest id first, when a copy's evaluation
-  // may stand for its own.
-  std::map<std::string, uint64_t> parents_by_genome;
+  // The parents by what their evaluation read of their genome (ids
+  // increasing, so the lowest id first), when an evaluation may stand for
+  // another of the same key.
+  std::map<std::string, uint64_t> parents_by_key;
+  OffspringPipeline::KeyFunction key_of;
   if (evaluators->results_follow_genome()) {
+    const ModelConfig* model = &settings_.model;
+    key_of = [model](const Genome& genome) {
+      return EvaluationKey(genome, *model);
+    };
     for (size_t i = 0; i < genomes_.ids.size(); ++i) {
-      parents_by_genome.emplace(
-          protocol::SerializeGenome(genomes_.genomes[i]).bytes,
-          genomes_.ids[i]);
+      std::optional<std::string> key = key_of(genomes_.genomes[i]);
+      if (key) parents_by_key.emplace(std::move(*key), genomes_.ids[i]);
     }
   }
   OffspringPipeline pipeline(generation, *next, count, std::move(ranked),
-                             &genomes_, p);
+                             &genomes_, p, std::move(key_of));
   std::vector<uint64_t> reused;
   Result<std::vector<lineage::NewIndividual>> offspring =
-      WriteGeneration(generation, std::move(members), &pipeline,
-                      parents_by_genome, evaluators, &reused);
+      WriteGeneration(generation, std::move(members), &pipeline, parents_by_key,
+                      evaluators, &reused);
   if (!offspring.ok()) return offspring.status();
   std::vector<Genome> made = pipeline.TakeGenomes();
   for (size_t i = 0; i < count; ++i) {
@@ -458,7 +464,7 @@ Status EvolutionRun::MakeGeneration(
 
 Result<std::vector<lineage::NewIndividual>> EvolutionRun::WriteGeneration(
     int generation, std::vector<uint64_t> members, OffspringPipeline* pipeline,
-    const std::map<std::string, uint64_t>& parents_by_genome,
+    const std::map<std::string, uint64_t>& parents_by_key,
     EvaluationService* evaluators, std::vector<uint64_t>* reused) {
   Result<std::unique_ptr<lineage::GenerationWrite>> write =
       store_->BeginGeneration(run_id_, generation, std::move(members));
@@ -470,10 +476,10 @@ Result<std::vector<lineage::NewIndividual>> EvolutionRun::WriteGeneration(
     Status status = (*write)->Add(chunk);
     if (!status.ok()) return status;
     for (lineage::NewIndividual& n : chunk) {
-      const auto parent = n.serialized
-                              ? parents_by_genome.find(n.serialized->bytes)
-                              : parents_by_genome.end();
-      if (parent != parents_by_genome.end()) {
+      const std::optional<std::string>& key = pipeline->KeyOf(n.id);
+      const auto parent =
+          key ? parents_by_key.find(*key) : parents_by_key.end();
+      if (parent != parents_by_key.end()) {
         Result<bool> copied = (*write)->Reuse(n.id, parent->second);
         if (!copied.ok()) return copied.status();
         if (*copied) {

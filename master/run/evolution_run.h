@@ -141,15 +141,16 @@ class EvolutionRun {
   Result<std::vector<Scored>> Parents(
       int generation, const std::vector<lineage::Score>* scores);
   // Writes the generation with the offspring `pipeline` makes, in chunks,
-  // serving `evaluators` between chunks. An offspring whose genome's bytes
-  // are a key of `parents_by_genome` (a parent member's id by its genome)
-  // gets that member's evaluation in the same transaction
-  // (GenerationWrite::Reuse) and its id goes to `reused`; returns the
-  // offspring written that are still to be evaluated.
+  // serving `evaluators` between chunks. An offspring whose evaluation key
+  // (OffspringPipeline::KeyOf) is a key of `parents_by_key` (a parent
+  // member's id by its genome's evaluation key) gets that member's
+  // evaluation in the same transaction (GenerationWrite::Reuse) and its id
+  // goes to `reused`; returns the offspring written that are still to be
+  // evaluated.
   Result<std::vector<lineage::NewIndividual>> WriteGeneration(
       int generation, std::vector<uint64_t> members,
       OffspringPipeline* pipeline,
-      const std::map<std::string, uint64_t>& parents_by_genome,
+      const std::map<std::string, uint64_t>& parents_by_key,
       EvaluationService* evaluators, std::vector<uint64_t>* reused);
   // Polls `evaluators` for up to `timeout_ms` and keeps the results for
   // the next Flush. Fails on a null-evaluation result (the other results

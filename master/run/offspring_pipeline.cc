@@ -15,14 +15,16 @@ const Genome* GenomesById::Find(uint64_t id) const {
 OffspringPipeline::OffspringPipeline(int generation, uint64_t first,
                                      size_t count, std::vector<Scored> ranked,
                                      const GenomesById* parents,
-                                     EvolutionParams params)
+                                     EvolutionParams params, KeyFunction key)
     : generation_(generation),
       first_(first),
       ranked_(std::move(ranked)),
       parents_(parents),
       params_(std::move(params)),
+      key_(std::move(key)),
       children_(count),
       genomes_(count),
+      keys_(count),
       maker_([this] { Make(); }) {}
 
 OffspringPipeline::~OffspringPipeline() {
@@ -44,6 +46,7 @@ void OffspringPipeline::Make() {
     n.parents = std::move(offspring.parents);
     n.operators = std::move(offspring.operators);
     n.serialized = protocol::SerializeGenome(offspring.genome);
+    if (key_) keys_[i] = key_(offspring.genome);
     genomes_[i] = std::move(offspring.genome);
     made_.store(i + 1, std::memory_order_release);
     made_.notify_one();
@@ -68,6 +71,10 @@ std::vector<lineage::NewIndividual> OffspringPipeline::Next(size_t max) {
 
 std::vector<Genome> OffspringPipeline::TakeGenomes() {
   return std::move(genomes_);
+}
+
+const std::optional<std::string>& OffspringPipeline::KeyOf(uint64_t id) const {
+  return keys_.at(static_cast<size_t>(id - first_));
 }
 
 }  // namespace animat

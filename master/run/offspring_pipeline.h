@@ -14,6 +14,9 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -34,12 +37,19 @@ struct GenomesById {
 
 class OffspringPipeline {
  public:
+  // What an offspring's evaluation reads of its genome
+  // (EvaluationKey, common/evaluation/evaluator.h); called on the
+  // pipeline's thread, so it must be thread-safe.
+  using KeyFunction =
+      std::function<std::optional<std::string>(const Genome& genome)>;
+
   // Starts making the `count` offspring of `generation`, ids first,
   // first + 1, ...: `ranked` is the generation before, best first, and
   // `parents` holds its members' genomes (it must outlive the pipeline).
+  // With `key`, each offspring's key is made with it (KeyOf).
   OffspringPipeline(int generation, uint64_t first, size_t count,
                     std::vector<Scored> ranked, const GenomesById* parents,
-                    EvolutionParams params);
+                    EvolutionParams params, KeyFunction key = nullptr);
   // Stops making offspring (those not made are abandoned) and joins.
   ~OffspringPipeline();
   OffspringPipeline(const OffspringPipeline&) = delete;
@@ -50,6 +60,9 @@ class OffspringPipeline {
   std::vector<lineage::NewIndividual> Next(size_t max);
   // Once all have been handed: their genomes, in id order (moved out).
   std::vector<Genome> TakeGenomes();
+  // The key of offspring `id`, once handed by Next; nullopt without a key
+  // function, or when it gave none.
+  const std::optional<std::string>& KeyOf(uint64_t id) const;
 
  private:
   void Make();
@@ -59,10 +72,12 @@ class OffspringPipeline {
   const std::vector<Scored> ranked_;
   const GenomesById* const parents_;
   const EvolutionParams params_;
+  const KeyFunction key_;
   // Slot i is offspring first_ + i; written by the maker thread before it
   // publishes `made_` > i, read by the loop only after.
   std::vector<lineage::NewIndividual> children_;
   std::vector<Genome> genomes_;
+  std::vector<std::optional<std::string>> keys_;  // As children_.
   std::atomic<size_t> made_{0};
   std::atomic<bool> abandon_{false};
   size_t handed_ = 0;  // The loop's.

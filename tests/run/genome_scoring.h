@@ -1,29 +1,33 @@
 // A stand-in for the workers in the run loop's tests: an evaluation
-// service whose result is a pure function of the genome's bytes, as a
-// simulation's is, returned at once; so that whole evolutions run in a
-// fraction of a second and can be compared individual by individual. The
-// real workers' determinism is tested in tests/master/.
+// service whose result is a pure function of what a simulation reads of
+// the genome, as a simulation's is, returned at once; so that whole evolutions
+// run in a fraction of a second and can be compared individual by individual.
+// The real workers' determinism is tested in tests/master/.
 //
 // Not thread-safe, like the services it stands for.
 #ifndef ANIMAT_TESTS_RUN_GENOME_SCORING_H_
 #define ANIMAT_TESTS_RUN_GENOME_SCORING_H_
 
 #include <cstdint>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "common/base/clock.h"
+#include "common/evaluation/evaluator.h"
+#include "common/genome/genome_proto.h"
 #include "common/protocol/genome_wire.h"
 #include "master/dispatch/evaluation_service.h"
 
 namespace animat::testing {
 
-// Evaluates each genome at once, its result a function of its bytes
-// alone (through their hash, SerializedGenome::hash): one in 7 non-viable, one
-// in 11 crashed (a status that says nothing about the genome), the rest ok with
-// a fitness in [0, 1).
+// Evaluates each genome at once, its result a function of what a
+// simulation reads of it alone (EvaluationKey; the bytes for an invalid
+// genome), through a hash: one in 7 non-viable, one in 11 crashed (a status
+// that says nothing about the genome), the rest ok with a fitness in
+// [0, 1).
 class GenomeScoring final : public EvaluationService {
  public:
   explicit GenomeScoring(bool follow_genome) : follow_genome_(follow_genome) {}
@@ -33,7 +37,7 @@ class GenomeScoring final : public EvaluationService {
   }
   void Submit(uint64_t individual,
               const protocol::SerializedGenome& genome) override {
-    queue_.emplace_back(individual, genome.hash);
+    queue_.emplace_back(individual, KeyHash(genome));
     submitted_.insert(individual);
   }
   std::vector<Completion> Poll(int) override {
@@ -73,8 +77,24 @@ class GenomeScoring final : public EvaluationService {
   const std::set<uint64_t>& submitted() const { return submitted_; }
 
  private:
+  // FNV-1a of what an evaluation reads of the genome (EvaluationKey under
+  // the default model), or the bytes' hash for an invalid genome: genomes
+  // that a simulation cannot tell apart score alike, as they would.
+  static uint64_t KeyHash(const protocol::SerializedGenome& genome) {
+    v1::Genome message;
+    if (!message.ParseFromString(genome.bytes)) return genome.hash;
+    Result<Genome> parsed = GenomeFromProto(message);
+    if (!parsed.ok()) return genome.hash;
+    const std::optional<std::string> key =
+        EvaluationKey(*parsed, ModelConfig{});
+    if (!key) return genome.hash;
+    uint64_t h = 0xcbf29ce484222325ULL;
+    for (unsigned char c : *key) h = (h ^ c) * 0x100000001b3ULL;
+    return h;
+  }
+
   bool follow_genome_;
-  // Individuals submitted, with their genomes' hashes (of the bytes).
+  // Individuals submitted, with their KeyHash.
   std::vector<std::pair<uint64_t, uint64_t>> queue_;
   std::set<uint64_t> submitted_;
 };

@@ -1,0 +1,103 @@
+// EvaluationKey: genomes whose keys are equal evaluate to the same result
+// bit for bit (the master records one's evaluation for the other), and a
+// change that an evaluation reads changes the key.
+#include <gtest/gtest.h>
+
+#include <optional>
+#include <string>
+
+#include "common/evaluation/evaluator.h"
+#include "common/genome/genome_proto.h"
+#include "tests/test_genome.h"
+
+namespace animat {
+namespace {
+
+using testing::LoadGenome;
+
+ModelConfig ShortConfig() {
+  ModelConfig config;
+  config.evaluation.motion_steps = 300;
+  return config;
+}
+
+// Every field of the result, as the wire carries it.
+std::string Bits(const EvaluationResult& result) {
+  return EvaluationResultToProto(result).SerializeAsString();
+}
+
+std::string Bytes(const Genome& genome) {
+  return GenomeToProto(genome).SerializeAsString();
+}
+
+TEST(EvaluationKeyTest, AnElementThatBindsNothingChangesNeitherKeyNorResult) {
+  const ModelConfig config = ShortConfig();
+  const Genome genome = LoadGenome("seed-1198.json");
+  ASSERT_FALSE(genome.elements.empty());
+  // A P element far from every factor, put first: it binds nothing, and
+  // every element after it moves one place in the genome.
+  Genome far = genome;
+  Element p;
+  p.type = ElementType::kP;
+  p.x = 1e6;
+  p.y = -1e6;
+  far.elements.insert(far.elements.begin(), p);
+  ASSERT_NE(Bytes(far), Bytes(genome));
+  const std::optional<std::string> key = EvaluationKey(genome, config);
+  ASSERT_TRUE(key.has_value());
+  EXPECT_EQ(EvaluationKey(far, config), key);
+  const EvaluationResult before = Evaluate(genome, config);
+  ASSERT_EQ(before.status, EvalStatus::kOk) << before.reason;
+  EXPECT_EQ(Bits(Evaluate(far, config)), Bits(before));
+}
+
+TEST(EvaluationKeyTest, EveryElementMovedKeepsItsResultWhenItKeepsItsKey) {
+  // Each element moved far away in turn: where the key stays (it bound
+  // nothing), the result is the same bits; where it changes, the element
+  // was read. Both happen in this genome.
+  const ModelConfig config = ShortConfig();
+  const Genome genome = LoadGenome("seed-1198.json");
+  const std::optional<std::string> key = EvaluationKey(genome, config);
+  ASSERT_TRUE(key.has_value());
+  const std::string bits = Bits(Evaluate(genome, config));
+  int same = 0;
+  int changed = 0;
+  for (size_t i = 0; i < genome.elements.size(); ++i) {
+    Genome moved = genome;
+    moved.elements[i].x += 1000.0;
+    if (EvaluationKey(moved, config) == key) {
+      ++same;
+      EXPECT_EQ(Bits(Evaluate(moved, config)), bits) << "element " << i;
+    } else {
+      ++changed;
+    }
+  }
+  EXPECT_GT(same, 0);
+  EXPECT_GT(changed, 0);
+}
+
+TEST(EvaluationKeyTest, AWeightChangedOrAnInvalidGenome) {
+  const ModelConfig config = ShortConfig();
+  const Genome genome = LoadGenome("seed-1198.json");
+  const std::optional<std::string> key = EvaluationKey(genome, config);
+  // A binding pair's distance changed by a little changes its weight's
+  // bits: some element's small move must change the key.
+  bool some = false;
+  for (size_t i = 0; i < genome.elements.size() && !some; ++i) {
+    Genome nudged = genome;
+    nudged.elements[i].x += 1e-3;
+    some = EvaluationKey(nudged, config) != key;
+  }
+  EXPECT_TRUE(some);
+  // Another GRN parameter reads the same genome differently.
+  ModelConfig other = config;
+  other.grn.weight_max *= 2;
+  EXPECT_NE(EvaluationKey(genome, other), key);
+  // An invalid genome has no key (its evaluation names its fault).
+  Genome invalid = genome;
+  invalid.elements[0].sign = 0;
+  EXPECT_EQ(EvaluationKey(invalid, config), std::nullopt);
+}
+
+}  // namespace
+}  // namespace animat
