@@ -225,9 +225,20 @@ void AppendInts(std::string* out, const std::vector<int>& values) {
 }  // namespace
 
 std::string Network::Key() const {
+  // What no evaluation computes is left out: a node that cannot influence
+  // any output is never updated (GrnBatch::Restrict; its level stays 0),
+  // so neither its own weights nor the weights onto it are read, and no
+  // path from an input to an output passes through it (CheckViability,
+  // NodesReaching of any outputs).
+  constexpr OutputChannel kAll[] = {
+      OutputChannel::kDivide,      OutputChannel::kRotateLeft,
+      OutputChannel::kRotateRight, OutputChannel::kSize,
+      OutputChannel::kExpand,      OutputChannel::kContract};
+  const std::vector<bool> needed = NodesReaching(kAll);
   std::string key;
   Append<uint64_t>(&key, nodes_.size());
-  for (const Node& n : nodes_) {
+  for (size_t v = 0; v < nodes_.size(); ++v) {
+    const Node& n = nodes_[v];
     Append<uint8_t>(&key, static_cast<uint8_t>(n.kind));
     Append<int32_t>(&key, n.channel);
     Append<uint8_t>(&key, n.makes_internal);
@@ -235,6 +246,7 @@ std::string Network::Key() const {
     Append<int32_t>(&key, n.morphogen);
     Append<uint8_t>(&key, n.regions.empty());
     Append<uint8_t>(&key, n.factors.empty());
+    Append<uint8_t>(&key, needed[v]);
   }
   AppendInts(&key, morphogen_nodes_);
   for (const std::vector<int>& channel : input_nodes_)
@@ -242,19 +254,33 @@ std::string Network::Key() const {
   for (const std::vector<int>& channel : output_nodes_) {
     AppendInts(&key, channel);
   }
-  Append<uint64_t>(&key, sources_.size());
-  for (const Source& s : sources_) {
-    Append<uint8_t>(&key, static_cast<uint8_t>(s.kind));
-    Append<int32_t>(&key, s.node);
-  }
   AppendInts(&key, targets_);
-  AppendInts(&key, row_begin_);
-  AppendInts(&key, weight_target_);
-  Append<uint64_t>(&key, weight_value_.size());
-  for (double w : weight_value_) Append<double>(&key, w);  // Its bits.
-  Append<int32_t>(&key, input_source_count_);
-  Append<int32_t>(&key, static_input_source_count_);
-  for (const std::vector<int>& next : successors_) AppendInts(&key, next);
+  // The needed sources in order, each with its group and its weights onto
+  // needed targets (their bits), as GrnBatch::Restrict keeps them.
+  for (size_t s = 0; s < sources_.size(); ++s) {
+    if (!needed[sources_[s].node]) continue;
+    const int index = static_cast<int>(s);
+    Append<uint8_t>(&key, static_cast<uint8_t>(sources_[s].kind));
+    Append<int32_t>(&key, sources_[s].node);
+    Append<uint8_t>(&key, index < static_input_source_count_);
+    Append<uint8_t>(&key, index < input_source_count_);
+    for (int k = row_begin_[s]; k < row_begin_[s + 1]; ++k) {
+      const int t = weight_target_[k];
+      if (!needed[targets_[t]]) continue;
+      Append<int32_t>(&key, t);
+      Append<double>(&key, weight_value_[k]);
+    }
+    Append<int32_t>(&key, -1);  // The row's end.
+  }
+  // The binding graph among needed nodes.
+  for (size_t v = 0; v < successors_.size(); ++v) {
+    if (!needed[v]) continue;
+    Append<int32_t>(&key, static_cast<int32_t>(v));
+    for (int u : successors_[v]) {
+      if (needed[u]) Append<int32_t>(&key, u);
+    }
+    Append<int32_t>(&key, -1);
+  }
   return key;
 }
 

@@ -116,13 +116,17 @@ class Network {
   // input to an EXPAND or CONTRACT output.
   Viability CheckViability() const;
 
-  // Everything of the network but where its nodes' elements sit in the
-  // genome, as bytes: the nodes' kinds, channels and factor kinds, the
-  // channel and morphogen lists, the weights (their bits) and the binding
-  // graph. Two genomes whose networks have equal keys differ only where
-  // nothing reads them (a P element that binds nothing, an element moved),
-  // so, under one model configuration, they evaluate to the same result
-  // bit for bit (EvaluationKey in common/evaluation/evaluator.h).
+  // What an evaluation reads of the network, as bytes: the nodes' kinds,
+  // channels and factor kinds, which of them can influence an output
+  // (NodesReaching), the channel and morphogen lists, and, among the nodes
+  // that can, the weights (their bits) and the binding graph. Left out:
+  // where the nodes' elements sit in the genome, and the weights and
+  // bindings of nodes that influence no output, which are never computed.
+  // Two genomes whose networks have equal keys differ only where nothing
+  // reads them (an element that binds nothing or only feeds such nodes,
+  // elements moved), so, under one model configuration, they evaluate to
+  // the same result bit for bit (EvaluationKey in
+  // common/evaluation/evaluator.h).
   std::string Key() const;
 
   // Which nodes can influence an output node of one of `channels`: the

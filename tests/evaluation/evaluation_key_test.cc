@@ -5,9 +5,13 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "common/base/rng.h"
 #include "common/evaluation/evaluator.h"
 #include "common/genome/genome_proto.h"
+#include "common/genome/random_genome.h"
+#include "common/grn/network.h"
 #include "tests/test_genome.h"
 
 namespace animat {
@@ -74,6 +78,59 @@ TEST(EvaluationKeyTest, EveryElementMovedKeepsItsResultWhenItKeepsItsKey) {
   }
   EXPECT_GT(same, 0);
   EXPECT_GT(changed, 0);
+}
+
+TEST(EvaluationKeyTest, GenomesOfOneKeyEvaluateAlike) {
+  // Evolved and random genomes, each element in turn moved far, doubled
+  // or removed: a variant that keeps the genome's key (nothing read
+  // changed: the element bound nothing, or only fed nodes that reach no
+  // output) gives the same result bits, whatever the status.
+  ModelConfig config;
+  config.evaluation.motion_steps = 60;
+  config.evaluation.equilibration_steps = 20;
+  std::vector<Genome> genomes;
+  for (const char* name :
+       {"seed-1198.json", "seed-1203.json", "seed-139.json",
+        "folding-dn1-seed3.json", "evolved-stops-actuating.json"}) {
+    genomes.push_back(LoadGenome(name));
+  }
+  for (uint64_t individual = 0; individual < 8; ++individual) {
+    RandomStream stream(7, individual, StreamPurpose::kRandomGenome);
+    genomes.push_back(RandomGenome(stream));
+  }
+  int same = 0;
+  int same_ok = 0;  // Of them, ok evaluations.
+  int pruned = 0;   // Kept the key although a weight or binding changed.
+  for (size_t g = 0; g < genomes.size(); ++g) {
+    const Genome& genome = genomes[g];
+    const std::optional<std::string> key = EvaluationKey(genome, config);
+    ASSERT_TRUE(key.has_value());
+    const EvaluationResult result = Evaluate(genome, config);
+    const std::string bits = Bits(result);
+    const Network network = Network::Build(genome, config.grn);
+    for (size_t i = 0; i < genome.elements.size(); ++i) {
+      for (int change = 0; change < 3; ++change) {
+        Genome variant = genome;
+        if (change == 0) variant.elements[i].x += 1000.0;
+        if (change == 1) {
+          variant.elements.insert(variant.elements.begin() + i,
+                                  genome.elements[i]);
+        }
+        if (change == 2) variant.elements.erase(variant.elements.begin() + i);
+        if (EvaluationKey(variant, config) != key) continue;
+        ++same;
+        same_ok += result.status == EvalStatus::kOk;
+        const Network other = Network::Build(variant, config.grn);
+        pruned += other.weight_value() != network.weight_value() ||
+                  other.successors() != network.successors();
+        EXPECT_EQ(Bits(Evaluate(variant, config)), bits)
+            << "genome " << g << ", element " << i << ", change " << change;
+      }
+    }
+  }
+  EXPECT_GT(same_ok, 20);
+  EXPECT_GT(same - same_ok, 20);
+  EXPECT_GT(pruned, 0) << "no variant kept its key through the pruning";
 }
 
 TEST(EvaluationKeyTest, AWeightChangedOrAnInvalidGenome) {
