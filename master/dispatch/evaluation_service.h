@@ -60,12 +60,13 @@ class EvaluationService {
   virtual size_t pending() const = 0;
   // The time the service keeps (valid while it lives).
   virtual const Clock& clock() const = 0;
-  // Whether a result is a pure function of the genome (under the
-  // service's configuration and build), as a simulation is. Then a run
-  // does not submit an offspring whose genome is byte for byte a parent
-  // generation member's: it records that member's evaluation for it
-  // (docs/lineage.md, reused_from). False for stand-ins that depend on
-  // something else, such as the individual's id.
+  // Whether a result is a pure function of what a simulation reads of the
+  // genome (EvaluationKey, under the service's configuration and build),
+  // as a simulation's is. Then a run does not submit an offspring whose
+  // genome has a parent generation member's evaluation key: it records
+  // that member's evaluation for it (docs/lineage.md, reused_from). False
+  // for stand-ins that depend on something else, such as the individual's
+  // id.
   virtual bool results_follow_genome() const { return true; }
 };
 
