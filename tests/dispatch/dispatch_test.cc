@@ -334,9 +334,12 @@ TEST_F(DispatchTest, VanishedWorkerCostsAFewLogLinesNotThousands) {
 }
 
 TEST_F(DispatchTest, TerminatedWorkerHandsBackUnstartedWorkAndExitsCleanly) {
-  // One fast individual, then slow ones (about 100 ms each): after the
-  // fast one, the one-thread worker A runs the first slow one (1001) with
-  // the next one (1002) queued behind it, and is terminated 15 ms later.
+  // One fast individual, then slow ones (about 100 ms each, more under
+  // load): after the fast one, the one-thread worker A runs the first slow
+  // one (1001) with the next one (1002) queued behind it, and is
+  // terminated 40 ms later. (Nothing says when 1002 has reached A's queue;
+  // 40 ms gives a loaded machine time to deliver it, and is well within
+  // 1001's evaluation.)
   config_.evaluation.motion_steps = kMotionStepsFor100Ms;
   const v1::Genome slow = DataGenome("seed-1198");
   const std::vector<Individual> population = Population(
@@ -353,7 +356,7 @@ TEST_F(DispatchTest, TerminatedWorkerHandsBackUnstartedWorkAndExitsCleanly) {
                dispatcher_->stats().dispatched >= 3;
       },
       kLongWait));
-  ServeFor(milliseconds(15));  // Individual 1002 reaches A's queue.
+  ServeFor(milliseconds(40));  // Individual 1002 reaches A's queue.
   ASSERT_TRUE(a.Signal(SIGTERM));
   WorkerProcess b(Worker(2));
   ASSERT_TRUE(a.WaitExit(kLongWait, [&] { ServeFor(milliseconds(10)); }));
