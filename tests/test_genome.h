@@ -1,4 +1,5 @@
-// A genome of tests/data/genomes for the tests that evaluate one.
+// A genome of tests/data/genomes, and a short model configuration, for the
+// tests that evaluate one.
 #ifndef ANIMAT_TESTS_TEST_GENOME_H_
 #define ANIMAT_TESTS_TEST_GENOME_H_
 
@@ -6,6 +7,7 @@
 
 #include <string>
 
+#include "common/evaluation/model_config.h"
 #include "common/genome/genome_proto.h"
 #include "common/io/proto_file.h"
 #include "tests/test_util.h"
@@ -21,6 +23,14 @@ inline Genome LoadGenome(const std::string& name) {
   Result<Genome> genome = GenomeFromProto(message);
   EXPECT_TRUE(genome.ok()) << genome.status().ToString();
   return genome.ok() ? *genome : Genome{};
+}
+
+// The default model with a short motion phase (300 steps): the statuses,
+// and whether two evaluations agree, do not depend on the motion's length.
+inline ModelConfig ShortConfig() {
+  ModelConfig config;
+  config.evaluation.motion_steps = 300;
+  return config;
 }
 
 }  // namespace animat::testing

@@ -19,11 +19,7 @@ namespace {
 
 using testing::LoadGenome;
 
-ModelConfig ShortConfig() {
-  ModelConfig config;
-  config.evaluation.motion_steps = 300;
-  return config;
-}
+using testing::ShortConfig;
 
 // Every field of the result, as the wire carries it.
 std::string Bits(const EvaluationResult& result) {

@@ -20,12 +20,7 @@ namespace {
 
 using testing::LoadGenome;
 
-// A short schedule: the statuses do not depend on the motion's length.
-ModelConfig ShortConfig() {
-  ModelConfig config;
-  config.evaluation.motion_steps = 300;
-  return config;
-}
+using testing::ShortConfig;
 
 TEST(EvaluatorTest, NonViableNetworkHasNoFitnessAndSaysWhy) {
   const EvaluationResult r =

@@ -19,6 +19,7 @@ namespace animat {
 namespace {
 
 using testing::LoadGenome;
+using testing::ShortConfig;
 
 TEST(SaturationCounterTest, CountsValuesAtTheCapPerMorphogenInNodeOrder) {
   testing::FpTrapsOff traps_off;  // A NaN signal is compared on purpose.
@@ -74,12 +75,6 @@ TEST(SignalSaturationTest, DelayIsTheModelsTau) {
   SignalParams short_history = params;
   short_history.max_delay = 10;
   EXPECT_EQ(SignalDelay(5.0, short_history), 10);
-}
-
-ModelConfig ShortConfig() {
-  ModelConfig config;
-  config.evaluation.motion_steps = 300;
-  return config;
 }
 
 // seed-1198 (the benchmark genome): 32 cells, four morphogens of its own.
