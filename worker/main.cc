@@ -1,5 +1,5 @@
 // animat-worker --connect ENDPOINT [--threads N] [--heartbeat-ms MS]
-//               [--exit-when-done] [--idle-timeout S]
+//               [--exit-when-done] [--idle-timeout S] [--log-items]
 //               [--curve-server MASTER.pub --curve-secret WORKER.key]
 // animat-worker --evaluate-one REQUEST --result RESULT
 //
@@ -64,6 +64,8 @@ void AddOptions(CLI::App& app, animat::WorkerOptions& options, KeyFiles& keys) {
                  "Exit after this many seconds without a master (0: never)")
       ->check(CLI::Range(0, 100000000))
       ->capture_default_str();
+  app.add_flag("--log-items", options.log_items,
+               "Log the individuals of every work message received");
   auto* null_evaluation =
       app.add_flag("--null-evaluation", options.null_evaluation,
                    "Evaluate nothing; answer at once (dispatch benchmarks)");

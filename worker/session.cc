@@ -267,17 +267,34 @@ void Worker::Session::Accept(const v1::Work& work) {
   // others are evaluated, and the master's count of this worker's credit
   // stays right.
   int left_out = 0;
+  std::string received;  // The individuals taken, for --log-items.
   for (int i = 0; i < work.items_size(); ++i) {
     const v1::WorkItem& item = work.items(i);
     const Status valid = protocol::CheckWorkItem(item, i);
     if (!valid.ok()) {
       options_.log("ignored a work item from the master: " + valid.message());
       ++left_out;
-    } else if (stopping_) {
+      continue;
+    }
+    received.push_back(' ');
+    received += std::to_string(item.individual());
+    if (stopping_) {
       returned_.push_back(item.individual());  // Handed back.
     } else {
       pool()->Submit(item, *config);
     }
+  }
+  if (options_.log_items && !received.empty()) {
+    std::string line = "received";
+    line += received;
+    if (stopping_) {
+      line += " (stopping: handed back)";
+    } else {
+      line += "; ";
+      line += std::to_string(pool()->in_flight());
+      line += " queued or running";
+    }
+    options_.log(line);
   }
   if (left_out > 0 && !stopping_) SendCredit(left_out);
 }

@@ -58,6 +58,9 @@ struct WorkerOptions {
   // Exit (kExitDone) once no master has welcomed this worker for this many
   // seconds (checked between connection attempts); 0: never.
   int idle_timeout_s = 0;
+  // Log every work message received: its individuals and how many items
+  // the pool then holds (one line per message; for following a worker).
+  bool log_items = false;
   LogSink log = Prefixed("worker", StderrSink);
   // The time heartbeats, the master's liveness and the idle timeout are
   // kept by (a ManualClock in tests); it must outlive the worker. Waits

@@ -167,6 +167,7 @@ std::vector<std::string> WorkerArgv(const WorkerOptions& options) {
     argv.push_back("--idle-timeout");
     argv.push_back(std::to_string(options.idle_timeout_s));
   }
+  if (options.log_items) argv.push_back("--log-items");
   return argv;
 }
 

@@ -85,6 +85,7 @@ struct WorkerOptions {
   // Exit after this many seconds without a master (0: never), so that
   // workers outlive a master killed with SIGKILL only so long.
   int idle_timeout_s = 0;
+  bool log_items = false;  // Log every work message received.
   // Where each worker's standard output and error are appended ("": the
   // parent's).
   std::string log_path;

@@ -179,6 +179,13 @@ TEST_F(LocalWorkersTest, AWorkersCommandLineSaysWhatItsOptionsSay) {
                 "/opt/animat-worker", "--connect", "tcp://10.0.0.1:5555",
                 "--threads", "4", "--null-evaluation", "--null-delay-ms",
                 "12.5", "--null-delay-cv", "0.10000000000000001"}));
+  options.null_evaluation = false;
+  options.null_delay_ms = 0;
+  options.log_items = true;
+  EXPECT_EQ(WorkerArgv(options),
+            (std::vector<std::string>{"/opt/animat-worker", "--connect",
+                                      "tcp://10.0.0.1:5555", "--threads", "4",
+                                      "--log-items"}));
 }
 
 TEST_F(LocalWorkersTest, WorkersThatExitAreReportedAndDropped) {
