@@ -4,7 +4,6 @@
 
 #include "common/evaluation/evaluator.h"
 #include "common/genome/genome_proto.h"
-#include "common/protocol/genome_wire.h"
 #include "common/protocol/protocol.h"
 #include "master/lineage/queries.h"
 
@@ -414,11 +413,28 @@ Status EvolutionRun::MakeGeneration(
   for (int e = 0; e < p.elite && e < static_cast<int>(ranked.size()); ++e) {
     members.push_back(ranked[e].id);
   }
+  // The parents' keys, made once per genome: kept from the generation
+  // that made it, or made here after a resume.
+  OffspringPipeline::KeyFunction key_of;
+  if (evaluators->results_follow_genome()) {
+    const ModelConfig* model = &settings_.model;
+    key_of = [model](const Genome& genome) {
+      return EvaluationKey(genome, *model);
+    };
+    if (genomes_.keys.size() != genomes_.ids.size()) {
+      genomes_.keys.clear();
+      for (const Genome& genome : genomes_.genomes) {
+        genomes_.keys.push_back(key_of(genome));
+      }
+    }
+  }
   GenomesById next_genomes;
   next_genomes.ids = members;
   std::sort(next_genomes.ids.begin(), next_genomes.ids.end());
   for (uint64_t id : next_genomes.ids) {
-    next_genomes.genomes.push_back(*genomes_.Find(id));
+    const size_t index = *genomes_.IndexOf(id);
+    next_genomes.genomes.push_back(genomes_.genomes[index]);
+    if (key_of) next_genomes.keys.push_back(genomes_.keys[index]);
   }
   Result<uint64_t> next = store_->NextId(run_id_);
   if (!next.ok()) return next.status();
@@ -431,17 +447,14 @@ Status EvolutionRun::MakeGeneration(
   // increasing, so the lowest id first), when an evaluation may stand for
   // another of the same key.
   std::map<std::string, uint64_t> parents_by_key;
-  OffspringPipeline::KeyFunction key_of;
-  if (evaluators->results_follow_genome()) {
-    const ModelConfig* model = &settings_.model;
-    key_of = [model](const Genome& genome) {
-      return EvaluationKey(genome, *model);
-    };
+  if (key_of) {
     for (size_t i = 0; i < genomes_.ids.size(); ++i) {
-      std::optional<std::string> key = key_of(genomes_.genomes[i]);
-      if (key) parents_by_key.emplace(std::move(*key), genomes_.ids[i]);
+      if (genomes_.keys[i]) {
+        parents_by_key.emplace(*genomes_.keys[i], genomes_.ids[i]);
+      }
     }
   }
+  const bool keyed = static_cast<bool>(key_of);
   OffspringPipeline pipeline(generation, *next, count, std::move(ranked),
                              &genomes_, p, std::move(key_of));
   std::vector<uint64_t> reused;
@@ -450,9 +463,11 @@ Status EvolutionRun::MakeGeneration(
                       evaluators, &reused);
   if (!offspring.ok()) return offspring.status();
   std::vector<Genome> made = pipeline.TakeGenomes();
+  std::vector<std::optional<std::string>> made_keys = pipeline.TakeKeys();
   for (size_t i = 0; i < count; ++i) {
     next_genomes.ids.push_back(*next + i);
     next_genomes.genomes.push_back(std::move(made[i]));
+    if (keyed) next_genomes.keys.push_back(std::move(made_keys[i]));
   }
   genomes_ = std::move(next_genomes);
   genomes_generation_ = generation;

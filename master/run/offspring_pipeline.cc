@@ -6,10 +6,15 @@
 
 namespace animat {
 
-const Genome* GenomesById::Find(uint64_t id) const {
+std::optional<size_t> GenomesById::IndexOf(uint64_t id) const {
   const auto it = std::lower_bound(ids.begin(), ids.end(), id);
-  if (it == ids.end() || *it != id) return nullptr;
-  return &genomes[static_cast<size_t>(it - ids.begin())];
+  if (it == ids.end() || *it != id) return std::nullopt;
+  return static_cast<size_t>(it - ids.begin());
+}
+
+const Genome* GenomesById::Find(uint64_t id) const {
+  const std::optional<size_t> index = IndexOf(id);
+  return index ? &genomes[*index] : nullptr;
 }
 
 OffspringPipeline::OffspringPipeline(int generation, uint64_t first,
@@ -71,6 +76,10 @@ std::vector<lineage::NewIndividual> OffspringPipeline::Next(size_t max) {
 
 std::vector<Genome> OffspringPipeline::TakeGenomes() {
   return std::move(genomes_);
+}
+
+std::vector<std::optional<std::string>> OffspringPipeline::TakeKeys() {
+  return std::move(keys_);
 }
 
 const std::optional<std::string>& OffspringPipeline::KeyOf(uint64_t id) const {

@@ -31,6 +31,11 @@ namespace animat {
 struct GenomesById {
   std::vector<uint64_t> ids;
   std::vector<Genome> genomes;
+  // Each genome's evaluation key (OffspringPipeline::KeyFunction; nullopt:
+  // it has none), as genomes; empty when the keys were not made.
+  std::vector<std::optional<std::string>> keys;
+  // The index of `id` in ids, or nullopt when it is not a member.
+  std::optional<size_t> IndexOf(uint64_t id) const;
   // The genome of `id`, or null when it is not a member.
   const Genome* Find(uint64_t id) const;
 };
@@ -60,6 +65,8 @@ class OffspringPipeline {
   std::vector<lineage::NewIndividual> Next(size_t max);
   // Once all have been handed: their genomes, in id order (moved out).
   std::vector<Genome> TakeGenomes();
+  // Once all have been handed: their keys (KeyOf), in id order (moved out).
+  std::vector<std::optional<std::string>> TakeKeys();
   // The key of offspring `id`, once handed by Next; nullopt without a key
   // function, or when it gave none.
   const std::optional<std::string>& KeyOf(uint64_t id) const;
