@@ -142,13 +142,10 @@ int Run(const std::string& genome_path) {
 
   // Development, watched step by step for its pair counts.
   const Network network = Network::Build(*genome, config.grn);
-  constexpr OutputChannel kAll[] = {
-      OutputChannel::kDivide,      OutputChannel::kRotateLeft,
-      OutputChannel::kRotateRight, OutputChannel::kSize,
-      OutputChannel::kExpand,      OutputChannel::kContract};
   constexpr OutputChannel kMotion[] = {OutputChannel::kExpand,
                                        OutputChannel::kContract};
-  const std::vector<bool> dev_needed = network.NodesReaching(kAll);
+  const std::vector<bool> dev_needed =
+      network.NodesReaching(kAllOutputChannels);
   const NetworkWork dev_net = CountNetwork(network, dev_needed, false);
   int dev_morphogens = 0;
   for (int node : network.morphogen_nodes()) {

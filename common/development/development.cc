@@ -40,11 +40,7 @@ DevelopmentOutcome DevelopmentT<S>::Run(const Observer& observer,
   grn_.AddCell();
   field_.AddCell();
   // Nodes that cannot influence any output are not computed.
-  constexpr OutputChannel kAll[] = {
-      OutputChannel::kDivide,      OutputChannel::kRotateLeft,
-      OutputChannel::kRotateRight, OutputChannel::kSize,
-      OutputChannel::kExpand,      OutputChannel::kContract};
-  RestrictTo(network_.NodesReaching(kAll));
+  RestrictTo(network_.NodesReaching(kAllOutputChannels));
   const bool signalling = field_.morphogens() > 0;
 
   for (int step = 0; step < params_.steps; ++step) {

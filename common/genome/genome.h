@@ -48,6 +48,11 @@ enum class OutputChannel : uint8_t {
   kContract,
 };
 inline constexpr int kOutputChannels = 6;
+// Every output channel, in the enum's order.
+inline constexpr OutputChannel kAllOutputChannels[kOutputChannels] = {
+    OutputChannel::kDivide,      OutputChannel::kRotateLeft,
+    OutputChannel::kRotateRight, OutputChannel::kSize,
+    OutputChannel::kExpand,      OutputChannel::kContract};
 
 // Genomes longer than this are rejected (bounds the network's cost).
 inline constexpr size_t kMaxGenomeElements = 10000;

@@ -230,11 +230,7 @@ std::string Network::Key() const {
   // so neither its own weights nor the weights onto it are read, and no
   // path from an input to an output passes through it (CheckViability,
   // NodesReaching of any outputs).
-  constexpr OutputChannel kAll[] = {
-      OutputChannel::kDivide,      OutputChannel::kRotateLeft,
-      OutputChannel::kRotateRight, OutputChannel::kSize,
-      OutputChannel::kExpand,      OutputChannel::kContract};
-  const std::vector<bool> needed = NodesReaching(kAll);
+  const std::vector<bool> needed = NodesReaching(kAllOutputChannels);
   std::string key;
   Append<uint64_t>(&key, nodes_.size());
   for (size_t v = 0; v < nodes_.size(); ++v) {
