@@ -233,6 +233,18 @@ def glide(animat, genome, config, start=3000):
     }
 
 
+def finite(value):
+    """VALUE with every non-finite float (an undefined correlation) as
+    None, so that it is written as JSON's null, not as NaN."""
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    if isinstance(value, dict):
+        return {k: finite(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [finite(v) for v in value]
+    return value
+
+
 def spearman(xs, ys):
     """Spearman's rank correlation (average ranks for ties)."""
     def ranks(v):
@@ -375,7 +387,8 @@ def main():
                "amplitude_frequency": trade,
                "figure_problems": problems}
     with open(os.path.join(args.dest, "replication.json"), "w") as f:
-        json.dump(summary, f, indent=1, sort_keys=True)
+        json.dump(finite(summary), f, indent=1, sort_keys=True,
+                  allow_nan=False)
 
     # The tables.
     lines = ["| run | d_N | seed | generations | random genomes tried | best at 0 "
