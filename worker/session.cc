@@ -276,8 +276,10 @@ void Worker::Session::Accept(const v1::Work& work) {
       ++left_out;
       continue;
     }
-    received.push_back(' ');
-    received += std::to_string(item.individual());
+    if (options_.log_items) {
+      received.push_back(' ');
+      received += std::to_string(item.individual());
+    }
     if (stopping_) {
       returned_.push_back(item.individual());  // Handed back.
     } else {

@@ -374,22 +374,31 @@ TEST_F(DispatchTest, TerminatedWorkerHandsBackUnstartedWorkAndExitsCleanly) {
   // slow one (1001) and the next (1002) together, and is terminated as
   // soon as it logs having received 1002: its thread is then on 1001 (or
   // has not yet taken it), so 1002 at least is handed back unstarted.
+  // Nothing here waits on liveness, so the heartbeat is slow: a loaded
+  // machine that starves either side for 300 ms must not make it look
+  // lost (A would then exit without its goodbye).
+  constexpr int kPatientHeartbeatMs = 1000;
   config_.evaluation.motion_steps = kMotionStepsFor100Ms;
   const v1::Genome slow = DataGenome("seed-1198");
   const std::vector<Individual> population = Population(
       {DataGenome("example"), slow, slow, DataGenome("seed-1-nonviable"),
        DataGenome("seed-2-too-few-cells")},
       1000);
-  ASSERT_TRUE(StartDispatcher());
+  DispatcherOptions options = Options();
+  options.heartbeat_ms = kPatientHeartbeatMs;
+  ASSERT_TRUE(StartDispatcher(options));
   Submit(population);
   WorkerArgs args = Worker(1);
+  args.heartbeat_ms = kPatientHeartbeatMs;
   args.log_items = true;
   WorkerProcess a(args);
   ASSERT_TRUE(a.started());
   ASSERT_TRUE(Serve([&] { return SaysReceived(a.output(), 1002); }, kLongWait))
       << a.output();
   ASSERT_TRUE(a.Signal(SIGTERM));
-  WorkerProcess b(Worker(2));
+  WorkerArgs b_args = Worker(2);
+  b_args.heartbeat_ms = kPatientHeartbeatMs;
+  WorkerProcess b(b_args);
   ASSERT_TRUE(a.WaitExit(kLongWait, [&] { ServeFor(milliseconds(10)); }));
   EXPECT_EQ(a.exit_code(), 0) << a.Describe();
   ASSERT_TRUE(ServeUntilAllDone());
