@@ -57,8 +57,14 @@ namespace animat::testing {
 using std::chrono::milliseconds;
 using Steady = std::chrono::steady_clock;
 
-// Heartbeat interval of every test: a peer silent for 300 ms is dead.
+// Heartbeat interval of the tests that exercise liveness: a peer silent
+// for 300 ms is dead.
 inline constexpr int kHeartbeatMs = 100;
+// Heartbeat interval of the tests with real worker processes that do not
+// exercise liveness (PatientOptions, PatientWorker): a loaded machine that
+// starves a process for a few hundred milliseconds must not make a live
+// peer look lost.
+inline constexpr int kPatientHeartbeatMs = 1000;
 // Motion steps that make a viable genome's evaluation last about 100 ms:
 // about 2.5 us a step in an optimised build, some 50 times more in a Debug
 // build with sanitizers (the tests that act during an evaluation use it).
@@ -338,6 +344,17 @@ class DispatchTest : public ::testing::Test {
     }
   }
   bool StartDispatcher() { return StartDispatcher(Options()); }
+
+  DispatcherOptions PatientOptions() {
+    DispatcherOptions options = Options();
+    options.heartbeat_ms = kPatientHeartbeatMs;
+    return options;
+  }
+  WorkerArgs PatientWorker(int threads) const {
+    WorkerArgs args = Worker(threads);
+    args.heartbeat_ms = kPatientHeartbeatMs;
+    return args;
+  }
 
   WorkerArgs Worker(int threads) const {
     WorkerArgs args;

@@ -40,9 +40,9 @@ std::set<uint64_t> Ids(const std::vector<v1::WorkItem>& items) {
 
 TEST_F(DispatchTest, EveryIndividualCompletesOnceAsEvaluatedDirectly) {
   const std::vector<Individual> population = Population(MixedGenomes(40), 1);
-  ASSERT_TRUE(StartDispatcher());
-  WorkerProcess a(Worker(2));
-  WorkerProcess b(Worker(2));
+  ASSERT_TRUE(StartDispatcher(PatientOptions()));
+  WorkerProcess a(PatientWorker(2));
+  WorkerProcess b(PatientWorker(2));
   ASSERT_TRUE(a.started() && b.started());
   ASSERT_TRUE(Serve([&] { return dispatcher_->workers() == 2; }, kShortWait));
   ServeFor(milliseconds(300));  // Their credit arrives.
@@ -97,14 +97,14 @@ TEST_F(DispatchTest, KilledWorkersLeasesAreEvaluatedElsewhereExactlyOnce) {
 
 TEST_F(DispatchTest, WorkerJoiningLateGetsTheQueuedWork) {
   const std::vector<Individual> population = Population(MixedGenomes(12), 200);
-  ASSERT_TRUE(StartDispatcher());
+  ASSERT_TRUE(StartDispatcher(PatientOptions()));
   Submit(population);
   ServeFor(milliseconds(500));
   EXPECT_TRUE(completions_.empty());
   EXPECT_EQ(dispatcher_->pending(), population.size());
   EXPECT_EQ(dispatcher_->stats().dispatched, 0);
 
-  WorkerProcess late(Worker(2));
+  WorkerProcess late(PatientWorker(2));
   ASSERT_TRUE(late.started());
   ASSERT_TRUE(ServeUntilAllDone());
   ExpectEachCompletedOnceAsEvaluatedDirectly(population);
@@ -377,28 +377,22 @@ TEST_F(DispatchTest, TerminatedWorkerHandsBackUnstartedWorkAndExitsCleanly) {
   // Nothing here waits on liveness, so the heartbeat is slow: a loaded
   // machine that starves either side for 300 ms must not make it look
   // lost (A would then exit without its goodbye).
-  constexpr int kPatientHeartbeatMs = 1000;
   config_.evaluation.motion_steps = kMotionStepsFor100Ms;
   const v1::Genome slow = DataGenome("seed-1198");
   const std::vector<Individual> population = Population(
       {DataGenome("example"), slow, slow, DataGenome("seed-1-nonviable"),
        DataGenome("seed-2-too-few-cells")},
       1000);
-  DispatcherOptions options = Options();
-  options.heartbeat_ms = kPatientHeartbeatMs;
-  ASSERT_TRUE(StartDispatcher(options));
+  ASSERT_TRUE(StartDispatcher(PatientOptions()));
   Submit(population);
-  WorkerArgs args = Worker(1);
-  args.heartbeat_ms = kPatientHeartbeatMs;
+  WorkerArgs args = PatientWorker(1);
   args.log_items = true;
   WorkerProcess a(args);
   ASSERT_TRUE(a.started());
   ASSERT_TRUE(Serve([&] { return SaysReceived(a.output(), 1002); }, kLongWait))
       << a.output();
   ASSERT_TRUE(a.Signal(SIGTERM));
-  WorkerArgs b_args = Worker(2);
-  b_args.heartbeat_ms = kPatientHeartbeatMs;
-  WorkerProcess b(b_args);
+  WorkerProcess b(PatientWorker(2));
   ASSERT_TRUE(a.WaitExit(kLongWait, [&] { ServeFor(milliseconds(10)); }));
   EXPECT_EQ(a.exit_code(), 0) << a.Describe();
   ASSERT_TRUE(ServeUntilAllDone());
