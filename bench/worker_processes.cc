@@ -48,7 +48,7 @@ WorkerProcesses::WorkerProcesses(std::string binary, std::string log,
 
 bool WorkerProcesses::Spawn(int count, int threads, bool null_evaluation,
                             double null_delay_ms, double null_delay_cv) {
-  WorkerOptions options;
+  LocalWorkerOptions options;
   options.binary = binary_;
   options.endpoint = dispatcher_->endpoint();
   options.threads = threads;

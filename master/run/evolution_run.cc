@@ -454,7 +454,6 @@ Status EvolutionRun::MakeGeneration(
       }
     }
   }
-  const bool keyed = static_cast<bool>(key_of);
   OffspringPipeline pipeline(generation, *next, count, std::move(ranked),
                              &genomes_, p, std::move(key_of));
   std::vector<uint64_t> reused;
@@ -467,7 +466,8 @@ Status EvolutionRun::MakeGeneration(
   for (size_t i = 0; i < count; ++i) {
     next_genomes.ids.push_back(*next + i);
     next_genomes.genomes.push_back(std::move(made[i]));
-    if (keyed) next_genomes.keys.push_back(std::move(made_keys[i]));
+    if (!made_keys.empty())
+      next_genomes.keys.push_back(std::move(made_keys[i]));
   }
   genomes_ = std::move(next_genomes);
   genomes_generation_ = generation;

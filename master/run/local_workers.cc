@@ -147,7 +147,7 @@ std::string ExactText(double value) {
 
 }  // namespace
 
-std::vector<std::string> WorkerArgv(const WorkerOptions& options) {
+std::vector<std::string> WorkerArgv(const LocalWorkerOptions& options) {
   std::vector<std::string> argv = {options.binary, "--connect",
                                    options.endpoint, "--threads",
                                    std::to_string(options.threads)};
@@ -171,7 +171,7 @@ std::vector<std::string> WorkerArgv(const WorkerOptions& options) {
   return argv;
 }
 
-Status LocalWorkers::Start(int count, const WorkerOptions& options) {
+Status LocalWorkers::Start(int count, const LocalWorkerOptions& options) {
   ProcessOptions process;
   process.argv = WorkerArgv(options);
   process.stdout_path = options.log_path;

@@ -71,7 +71,7 @@ class LocalProcess {
   int status_ = 0;  // waitpid's, once reaped.
 };
 
-struct WorkerOptions {
+struct LocalWorkerOptions {
   std::string binary;    // The animat-worker to run.
   std::string endpoint;  // The master's.
   int threads = 1;
@@ -95,7 +95,7 @@ struct WorkerOptions {
 // build/bin/ beside animat).
 std::string WorkerBesideThisProgram();
 // The command line of a worker with these options.
-std::vector<std::string> WorkerArgv(const WorkerOptions& options);
+std::vector<std::string> WorkerArgv(const LocalWorkerOptions& options);
 
 class LocalWorkers {
  public:
@@ -106,7 +106,7 @@ class LocalWorkers {
 
   // Starts `count` more workers; kIoError when one cannot be started (those
   // started so far keep running).
-  Status Start(int count, const WorkerOptions& options);
+  Status Start(int count, const LocalWorkerOptions& options);
   // Workers started and not stopped.
   size_t size() const { return workers_.size(); }
   // The first worker that has exited by itself ("exit code 3" for one that

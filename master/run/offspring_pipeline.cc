@@ -79,6 +79,7 @@ std::vector<Genome> OffspringPipeline::TakeGenomes() {
 }
 
 std::vector<std::optional<std::string>> OffspringPipeline::TakeKeys() {
+  if (!key_) return {};
   return std::move(keys_);
 }
 

@@ -65,7 +65,8 @@ class OffspringPipeline {
   std::vector<lineage::NewIndividual> Next(size_t max);
   // Once all have been handed: their genomes, in id order (moved out).
   std::vector<Genome> TakeGenomes();
-  // Once all have been handed: their keys (KeyOf), in id order (moved out).
+  // Once all have been handed: their keys (KeyOf), in id order (moved out);
+  // empty without a key function.
   std::vector<std::optional<std::string>> TakeKeys();
   // The key of offspring `id`, once handed by Next; nullopt without a key
   // function, or when it gave none.

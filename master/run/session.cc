@@ -152,7 +152,7 @@ bool NothingToRun(const RunPlan& plan) {
 Status StartLocalWorkers(const SessionOptions& o, const Dispatcher& dispatcher,
                          LocalWorkers* workers) {
   if (o.local_workers <= 0) return Status::Ok();
-  WorkerOptions worker;
+  LocalWorkerOptions worker;
   worker.binary = WorkerBesideThisProgram();
   worker.endpoint = dispatcher.endpoint();
   worker.threads = 1;

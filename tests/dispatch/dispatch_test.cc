@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <map>
 #include <set>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -337,18 +338,16 @@ TEST_F(DispatchTest, VanishedWorkerCostsAFewLogLinesNotThousands) {
 
 // Whether a --log-items worker's `output` says it received `individual`.
 bool SaysReceived(const std::string& output, uint64_t individual) {
+  // "received 1001 1002; 2 queued or running": each individual is
+  // followed by a space or the semicolon.
   const std::string id = " " + std::to_string(individual);
-  size_t line = 0;
-  while ((line = output.find("received ", line)) != std::string::npos) {
-    const size_t end = output.find('\n', line);
-    const std::string text = output.substr(line, end - line) + " ";
-    for (size_t at = text.find(id); at != std::string::npos;
-         at = text.find(id, at + 1)) {
-      const char after = text[at + id.size()];
-      if (after == ' ' || after == ';') return true;
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.find("received ") == std::string::npos) continue;
+    if (line.find(id + " ") != std::string::npos ||
+        line.find(id + ";") != std::string::npos) {
+      return true;
     }
-    if (end == std::string::npos) break;
-    line = end;
   }
   return false;
 }

@@ -17,7 +17,7 @@ namespace animat::testing {
 // A test worker's options (master/run/local_workers.h): the animat-worker
 // of ANIMAT_BIN_DIR, with a 100 ms heartbeat until the master's welcome
 // sets its own.
-struct WorkerArgs : WorkerOptions {
+struct WorkerArgs : LocalWorkerOptions {
   WorkerArgs() {
     binary = std::string(ANIMAT_BIN_DIR) + "/animat-worker";
     heartbeat_ms = 100;

@@ -153,7 +153,7 @@ TEST_F(LocalWorkersTest, DestroyingARunningProcessKillsAndReapsIt) {
 }
 
 TEST_F(LocalWorkersTest, AWorkersCommandLineSaysWhatItsOptionsSay) {
-  WorkerOptions options;
+  LocalWorkerOptions options;
   options.binary = "/opt/animat-worker";
   options.endpoint = "tcp://10.0.0.1:5555";
   options.threads = 4;
@@ -189,7 +189,7 @@ TEST_F(LocalWorkersTest, AWorkersCommandLineSaysWhatItsOptionsSay) {
 }
 
 TEST_F(LocalWorkersTest, WorkersThatExitAreReportedAndDropped) {
-  WorkerOptions options;
+  LocalWorkerOptions options;
   options.binary = Script("refused", "echo \"$@\"; exit 3");
   options.endpoint = "ipc://nowhere";
   options.log_path = Path("workers.log");
@@ -213,7 +213,7 @@ TEST_F(LocalWorkersTest, WorkersThatExitAreReportedAndDropped) {
 }
 
 TEST_F(LocalWorkersTest, StopEndsWorkersThatIgnoreSigtermAfterTheGrace) {
-  WorkerOptions options;
+  LocalWorkerOptions options;
   // One ends on SIGTERM; the other ignores it, and says so once it does.
   options.binary = Script("worker", "while :; do sleep 1; done");
   LocalWorkers workers;
