@@ -13,13 +13,21 @@ only finds the bests and tabulates, as a table (Markdown) and the numbers
              record's folder (scripts/run_record.py; its best's genome and
              model files), e.g. docs/results/runs/v3k1500-dn0.1-seed1.
 
+With --group LABEL=REGEX (repeatable, in order), OUT.md ends with one row
+per group: the bests whose name matches REGEX (Python re.search), and
+their share of values at the cap (median and range), how many have a
+morphogen at the cap in at least 97% of its values, their mean kernel
+sums and their crossing steps (ranges); OUT.json holds the same under
+"groups". A group that matches no best is an error.
+
 With --kernel-lengths 3,1.5,1 it also prints, for each v2 best's body
 (its rest positions, from `animat simulate --trace`), the cells' mean and
 largest kernel sum at each kernel length: the body as it grew, the kernel
 changed alone (a run at another length grows other bodies).
 
   scripts/signal_saturation.py [--animat build/bin/animat] \\
-      [--db RUN.db ...] [--kernel-lengths L,...] --out docs/results/saturation
+      [--db RUN.db ...] [--group LABEL=REGEX ...] [--kernel-lengths L,...] \\
+      --out docs/results/saturation
 
 Exit 0 when every animat was measured, 1 otherwise. Standard library only.
 """
@@ -120,6 +128,66 @@ def markdown(rows):
     return "\n".join(lines) + "\n"
 
 
+# A morphogen at the cap in at least this share of its values reads a
+# nearly constant 1.
+HOT_SHARE = 0.97
+
+
+def median(values):
+    ordered = sorted(values)
+    middle = len(ordered) // 2
+    if len(ordered) % 2:
+        return ordered[middle]
+    return (ordered[middle - 1] + ordered[middle]) / 2
+
+
+def summary(rows, groups):
+    """One dict per (label, pattern) of `groups`, over the rows whose
+    animat matches the pattern; ValueError for a group without rows."""
+    out = []
+    for label, pattern in groups:
+        members = [r for r in rows if re.search(pattern, r["animat"])]
+        if not members:
+            raise ValueError(f"group {label}: no best matches {pattern!r}")
+        capped = [r["capped_share"] for r in members]
+        kernel = [r["kernel_sum_mean"] for r in members]
+        steps = [r["crossing_steps"] for r in members]
+        out.append({
+            "group": label,
+            "bests": len(members),
+            "capped_share_median": median(capped),
+            "capped_share_min": min(capped),
+            "capped_share_max": max(capped),
+            "with_hot_morphogen": sum(
+                1 for r in members
+                if any(s >= HOT_SHARE for s in r["morphogen_shares"])),
+            "kernel_sum_mean_min": min(kernel),
+            "kernel_sum_mean_max": max(kernel),
+            "crossing_steps_min": min(steps),
+            "crossing_steps_max": max(steps),
+        })
+    return out
+
+
+def summary_markdown(groups):
+    lines = [
+        "| condition | bests | values at the cap: median (range) | "
+        "bests with a morphogen at the cap in ≥ 97% of its values | "
+        "kernel sum, mean | steps to cross |",
+        "|---|---:|---|---:|---|---|",
+    ]
+    for g in groups:
+        lines.append(
+            f"| {g['group']} | {g['bests']} | "
+            f"{100 * g['capped_share_median']:.0f}% "
+            f"({100 * g['capped_share_min']:.0f}–"
+            f"{100 * g['capped_share_max']:.0f}%) | "
+            f"{g['with_hot_morphogen']} of {g['bests']} | "
+            f"{g['kernel_sum_mean_min']:.1f}–{g['kernel_sum_mean_max']:.1f} | "
+            f"{g['crossing_steps_min']}–{g['crossing_steps_max']} |")
+    return "\n".join(lines) + "\n"
+
+
 def body_positions(animat, source):
     with tempfile.TemporaryDirectory() as scratch:
         trace = os.path.join(scratch, "trace.json")
@@ -155,11 +223,24 @@ def main():
     parser.add_argument("--animat", default=os.path.join(ROOT, "build", "bin",
                                                          "animat"))
     parser.add_argument("--db", action="append", default=[])
+    parser.add_argument("--group", action="append", default=[],
+                        metavar="LABEL=REGEX",
+                        help="a summary row over the bests matching REGEX")
     parser.add_argument("--kernel-lengths", default="",
                         help="comma-separated kernel lengths (radii)")
     parser.add_argument("--out", required=True,
                         help="writes OUT.md and OUT.json")
     args = parser.parse_args()
+    groups = []
+    for spec in args.group:
+        label, sep, pattern = spec.partition("=")
+        if not sep or not label or not pattern:
+            parser.error(f"--group {spec!r}: expected LABEL=REGEX")
+        try:
+            re.compile(pattern)
+        except re.error as error:
+            parser.error(f"--group {spec!r}: {error}")
+        groups.append((label, pattern))
     rows, failures = [], 0
     sources = [("v2", name, source) for name, source in v2_bests()]
     try:
@@ -173,12 +254,20 @@ def main():
         except RuntimeError as error:
             print(f"signal_saturation.py: {error}", file=sys.stderr)
             failures += 1
+    try:
+        grouped = summary(rows, groups)
+    except ValueError as error:
+        print(f"signal_saturation.py: {error}", file=sys.stderr)
+        grouped, failures = [], failures + 1
+    text = markdown(rows)
+    if grouped:
+        text += "\n" + summary_markdown(grouped)
     with open(args.out + ".json", "w") as f:
-        json.dump({"bests": rows}, f, indent=1)
+        json.dump({"bests": rows, "groups": grouped}, f, indent=1)
         f.write("\n")
     with open(args.out + ".md", "w") as f:
-        f.write(markdown(rows))
-    print(markdown(rows), end="")
+        f.write(text)
+    print(text, end="")
     if args.kernel_lengths:
         lengths = [float(l) for l in args.kernel_lengths.split(",")]
         if not lengths or min(lengths) <= 0:

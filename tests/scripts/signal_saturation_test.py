@@ -34,6 +34,43 @@ class ModelOfTest(unittest.TestCase):
         self.assertEqual(signal_saturation.model_of('model {}'), 'v3')
 
 
+def best(name, capped, shares, kernel=5.0, steps=60):
+    return {'animat': name, 'capped_share': capped,
+            'morphogen_shares': shares, 'kernel_sum_mean': kernel,
+            'crossing_steps': steps}
+
+
+class SummaryTest(unittest.TestCase):
+
+    def test_groups_the_bests_by_name(self):
+        rows = [best('v3-dn1-seed1-7', 0.5, [1.0, 0.0], 6.0, 80),
+                best('v3-dn1-seed2-9', 0.1, [0.2, 0.96], 4.0, 50),
+                best('v3-dn1-seed3-4', 0.3, [0.97], 5.0, 70),
+                best('v3-dn10-seed1-3', 0.9, [0.5], 7.0, 90)]
+        [one, ten] = signal_saturation.summary(
+            rows, [('d_N 1', r'-dn1-'), ('d_N 10', r'-dn10-')])
+        self.assertEqual(one['bests'], 3)
+        self.assertEqual(one['capped_share_median'], 0.3)
+        self.assertEqual(one['capped_share_min'], 0.1)
+        self.assertEqual(one['capped_share_max'], 0.5)
+        self.assertEqual(one['with_hot_morphogen'], 2)  # 1.0 and 0.97
+        self.assertEqual(one['kernel_sum_mean_min'], 4.0)
+        self.assertEqual(one['crossing_steps_max'], 80)
+        self.assertEqual(ten['bests'], 1)
+        self.assertEqual(ten['with_hot_morphogen'], 0)
+        self.assertIn('| d_N 1 | 3 | 30% (10–50%) | 2 of 3 | 4.0–6.0 | 50–80 |',
+                      signal_saturation.summary_markdown([one, ten]))
+
+    def test_an_even_count_takes_the_middle_pair(self):
+        rows = [best('a', 0.2, []), best('b', 0.4, [])]
+        [g] = signal_saturation.summary(rows, [('all', '.')])
+        self.assertAlmostEqual(g['capped_share_median'], 0.3)
+
+    def test_a_group_without_bests_is_an_error(self):
+        with self.assertRaises(ValueError):
+            signal_saturation.summary([best('a', 0.2, [])], [('x', 'zzz')])
+
+
 class RecordsTest(unittest.TestCase):
 
     def test_a_record_measures_as_its_kept_best(self):
