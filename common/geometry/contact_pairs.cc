@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "common/kernels/kernels.h"
+
 namespace animat {
 namespace {
 
@@ -17,6 +19,11 @@ constexpr double kBound = 0x1p20;
 // at least 0.1 skin beyond its reach, whatever the rounding of positions
 // and distances below kBound.
 constexpr double kMoveFraction = 0.45;
+
+// Each row of the pairs' bounds holds a multiple of this many pairs (the
+// widest vector of kernels::NearPairs), padded with pairs never listed, so
+// that no row ends in a partial vector.
+constexpr size_t kRowPad = 8;
 
 bool InBounds(Vec2 x) {
   // False for NaN and infinities too.
@@ -50,6 +57,7 @@ void ContactPairs::Exclude(std::span<const IndexEdge> pairs) {
   }
   built_at_.clear();  // The next Update rebuilds the list.
   last_seen_.clear();
+  row_begin_.clear();  // And its bounds.
 }
 
 void ContactPairs::Update(std::span<const Vec2> position,
@@ -63,6 +71,7 @@ void ContactPairs::Update(std::span<const Vec2> position,
                   position.size() * sizeof(Vec2)) == 0) {
     return;
   }
+  ++moves_;
   if (range != built_range_ || !Valid(position)) {
     Build(position, radius, range);
   }
@@ -84,16 +93,18 @@ bool ContactPairs::Valid(std::span<const Vec2> position) const {
   return valid;
 }
 
-void ContactPairs::Build(std::span<const Vec2> position,
-                         std::span<const double> radius, double range) {
-  const int n = static_cast<int>(position.size());
-  ++builds_;
-  built_range_ = range;
-  built_at_.assign(position.begin(), position.end());
-  begin_.assign(1, 0);
-  partner_.clear();
-  bool in_bounds = true;
-  for (int i = 0; i < n; ++i) in_bounds &= InBounds(position[i]);
+void ContactPairs::MakeBounds(std::span<const double> radius, double range) {
+  if (!row_begin_.empty() && range == bounds_range_ &&
+      radius.size() == bounds_radius_.size() &&
+      std::memcmp(radius.data(), bounds_radius_.data(),
+                  radius.size() * sizeof(double)) == 0) {
+    return;
+  }
+  const int n = static_cast<int>(radius.size());
+  bounds_range_ = range;
+  bounds_radius_.assign(radius.begin(), radius.end());
+  row_begin_.assign(1, 0);
+  bound2_.clear();
   const int excluding = static_cast<int>(excluded_begin_.size()) - 1;
   for (int i = 0; i < n; ++i) {
     // Cell i's excluded partners, increasing, walked alongside j.
@@ -106,17 +117,55 @@ void ContactPairs::Build(std::span<const Vec2> position,
     for (int j = i + 1; j < n; ++j) {
       if (skip != skip_end && *skip == j) {
         ++skip;
+        bound2_.push_back(-1.0);
         continue;
       }
-      const Vec2 delta = position[j] - position[i];
-      const double d2 = delta.x * delta.x + delta.y * delta.y;
-      // Left out only when farther than the mechanics' own pre-filter
-      // would let through, even with the skin added; NaN stays in.
       const double bound = Reach(range, radius[i] + radius[j]) + skin_;
-      if (d2 > bound * bound) continue;
-      partner_.push_back(j);
+      bound2_.push_back(bound * bound);
     }
-    begin_.push_back(static_cast<int>(partner_.size()));
+    // Padded to whole vectors of the kernel with pairs never listed.
+    while ((bound2_.size() - row_begin_.back()) % kRowPad != 0) {
+      bound2_.push_back(-1.0);
+    }
+    row_begin_.push_back(static_cast<int>(bound2_.size()));
+  }
+}
+
+void ContactPairs::Build(std::span<const Vec2> position,
+                         std::span<const double> radius, double range) {
+  const int n = static_cast<int>(position.size());
+  ++builds_;
+  built_range_ = range;
+  built_at_.assign(position.begin(), position.end());
+  MakeBounds(radius, range);
+  bool in_bounds = true;
+  x_.assign(static_cast<size_t>(n) + kRowPad, 0.0);
+  y_.assign(static_cast<size_t>(n) + kRowPad, 0.0);
+  for (int i = 0; i < n; ++i) {
+    in_bounds &= InBounds(position[i]);
+    x_[i] = position[i].x;
+    y_[i] = position[i].y;
+  }
+  // A pair is left out only when farther than the mechanics' own
+  // pre-filter would let through, even with the skin added; NaN stays in
+  // (kernels::NearPairs).
+  begin_.resize(static_cast<size_t>(n) + 1);
+  partner_.resize(bound2_.size() + 8);  // Room for the kernel's stores.
+  const Isa isa = ActiveIsa();
+  kernels::NearPairsArgs row;
+  row.x = x_.data();
+  row.y = y_.data();
+  int count = 0;
+  begin_[0] = 0;
+  for (int i = 0; i < n; ++i) {
+    row.first = i + 1;
+    row.last = i + 1 + (row_begin_[i + 1] - row_begin_[i]);
+    row.xi = x_[i];
+    row.yi = y_[i];
+    row.bound2 = bound2_.data() + row_begin_[i];
+    row.out = partner_.data() + count;
+    count += kernels::NearPairs(isa, row);
+    begin_[i + 1] = count;
   }
   // Out of bounds, the list is exact for these positions only: the next
   // Update() rebuilds it.

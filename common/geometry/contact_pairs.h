@@ -15,9 +15,12 @@
 // pair left out (and not excluded) therefore fails the exact test d < range ·
 // s: visiting only the listed pairs, in the same order, gives the same forces
 // bit for bit. Radii must not change between rebuilds (development fixes a
-// cell's radius at its birth). An Update at the very positions (the same bits)
-// of the one before costs a comparison of the positions only: integrators
-// evaluate forces more than once at one state.
+// cell's radius at its birth; a rebuild after a radius changed heeds it). An
+// Update at the very positions (the same bits) of the one before costs a
+// comparison of the positions only: integrators evaluate forces more than
+// once at one state. A rebuild tests every pair in vectors
+// (kernels::NearPairs on the instruction-set path in use; the same list on
+// every path), against each pair's bound computed once.
 //
 // Lengths in cell radii. Owns its storage; not thread-safe (one per
 // simulation); copies are independent.
@@ -54,6 +57,11 @@ class ContactPairs {
   // Times the list was built (for tests and benchmarks).
   long long builds() const { return builds_; }
 
+  // Counts the Updates at positions other than the last Update's (their
+  // bits), or at another range: equal counts mean the same positions, so
+  // what a caller computed from them at that count still holds.
+  long long moves() const { return moves_; }
+
   // The reach of a pair in the mechanics' pre-filter: a pair farther
   // apart than this (squared distances compared) is out of range, with a
   // relative margin of 1e-9 so that every pair near the range goes to
@@ -66,9 +74,13 @@ class ContactPairs {
   bool Valid(std::span<const Vec2> position) const;
   void Build(std::span<const Vec2> position, std::span<const double> radius,
              double range);
+  // Makes the pairs' bounds for these radii and range, unless they are
+  // already theirs.
+  void MakeBounds(std::span<const double> radius, double range);
 
   double skin_;
   long long builds_ = 0;
+  long long moves_ = 0;
   double built_range_ = 0.0;    // The range of the last Build.
   std::vector<Vec2> built_at_;  // Positions when the list was built.
   // The positions of the last Update: the same bits again need no check.
@@ -79,6 +91,17 @@ class ContactPairs {
   // [excluded_begin_[i], excluded_begin_[i+1]) (empty: none excluded).
   std::vector<int> excluded_begin_;
   std::vector<int> excluded_;
+  // Every pair i < j, row by row (cell i's j = i + 1 .. n - 1 from
+  // row_begin_[i]), with the square of its reach plus the skin (Build's
+  // bound), or -1 for an excluded pair: computed once for the radii and
+  // range it was made for (made again when either changes, or by Exclude).
+  double bounds_range_ = 0.0;
+  std::vector<double> bounds_radius_;
+  std::vector<int> row_begin_;
+  std::vector<double> bound2_;
+  // The positions of the last Build, coordinate by coordinate.
+  std::vector<double> x_;
+  std::vector<double> y_;
 };
 
 }  // namespace animat

@@ -11,6 +11,7 @@
   void GrnStepFloat(const GrnStepArgs<float>& args);   \
   void GrnStepDouble(const GrnStepArgs<double>& args); \
   void PairKernelsImpl(const PairKernelArgs& args);    \
+  int NearPairsImpl(const NearPairsArgs& args);        \
   }
 
 ANIMAT_DECLARE_KERNEL_PATH(isa_baseline)

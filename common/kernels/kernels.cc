@@ -35,6 +35,10 @@ void PairKernels(Isa isa, const PairKernelArgs& args) {
   ANIMAT_ON_PATH(isa, PairKernelsImpl(args));
 }
 
+int NearPairs(Isa isa, const NearPairsArgs& args) {
+  ANIMAT_ON_PATH(isa, NearPairsImpl(args));
+}
+
 #undef ANIMAT_ON_PATH
 
 void GrnStep(const GrnStepArgs<float>& args) { GrnStep(ActiveIsa(), args); }

@@ -63,6 +63,26 @@ struct PairKernelArgs {
 void PairKernels(const PairKernelArgs& args);
 void PairKernels(Isa isa, const PairKernelArgs& args);
 
+// One row of a pair list's rebuild (common/geometry/contact_pairs.h): the
+// cells j in [first, last), in increasing order, that lie within reach of
+// cell i at (xi, yi). With dx = x[j] - xi, dy = y[j] - yi and
+// d2 = dx * dx + dy * dy, j is kept when !(d2 > bound2[j - first]) (so a
+// NaN distance is kept) and bound2[j - first] >= 0 (a negative bound
+// excludes the pair whatever its distance). Writes the kept j to out and
+// returns their count; `out` must have room for last - first + 8 values
+// (the vector paths store whole vectors past the count).
+struct NearPairsArgs {
+  int first = 0;
+  int last = 0;
+  const double* x = nullptr;  // [last] cell coordinates.
+  const double* y = nullptr;
+  double xi = 0.0;
+  double yi = 0.0;
+  const double* bound2 = nullptr;  // [last - first]
+  int* out = nullptr;
+};
+int NearPairs(Isa isa, const NearPairsArgs& args);
+
 }  // namespace animat::kernels
 
 #endif  // ANIMAT_COMMON_KERNELS_KERNELS_H_

@@ -51,6 +51,20 @@ void Contacts::AddForces(std::span<const Vec2> x, std::span<const Vec2> v,
   assert(x.size() == radius_.size() && v.size() == radius_.size());
   ContactPairs& pairs = forces_use_all_ ? all_ : unjoined_;
   pairs.Update(x, radius_, kRange);
+  if (pairs.moves() != touching_moves_) FindTouching(x, pairs);
+  for (const Touch& t : touching_) {
+    const double w = -Dot(v[t.j] - v[t.i], t.u);
+    const double f = t.elastic + damping_ * w;
+    if (!(f > 0.0)) continue;  // Contacts push, never pull.
+    const Vec2 fu = t.u * f;
+    force[t.j] += fu;
+    force[t.i] -= fu;
+  }
+}
+
+void Contacts::FindTouching(std::span<const Vec2> x,
+                            const ContactPairs& pairs) {
+  touching_.clear();
   const int n = static_cast<int>(radius_.size());
   for (int i = 0; i < n; ++i) {
     for (int j : pairs.Partners(i)) {
@@ -60,14 +74,10 @@ void Contacts::AddForces(std::span<const Vec2> x, std::span<const Vec2> v,
       const double delta = Overlap(d.x * d.x + d.y * d.y, s, &l);
       if (!(delta > 0.0)) continue;
       const Vec2 u = l > 0.0 ? d / l : Vec2{};
-      const double w = -Dot(v[j] - v[i], u);
-      const double f = stiffness_ * delta + damping_ * w;
-      if (!(f > 0.0)) continue;  // Contacts push, never pull.
-      const Vec2 fu = u * f;
-      force[j] += fu;
-      force[i] -= fu;
+      touching_.push_back({i, j, u, stiffness_ * delta});
     }
   }
+  touching_moves_ = pairs.moves();
 }
 
 bool Contacts::Near(std::span<const Vec2> x, double margin) {

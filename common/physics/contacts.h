@@ -12,7 +12,10 @@
 // Pairs are visited in increasing (i, j) order; pairs that do not overlap,
 // or whose f is not positive, add nothing. A Verlet list (ContactPairs)
 // finds the candidates, so the result is exactly that of testing every
-// pair. Radii are the cells' radii at the end of development.
+// pair. The overlapping pairs' geometry (u, δ) is found once per positions
+// and kept while the velocities change (an integrator evaluates the forces
+// twice at each sub-step's end positions), with the same arithmetic.
+// Radii are the cells' radii at the end of development.
 //
 // Lengths in radii, velocities in radii per unit time, forces in the
 // model's units. Owns its storage; not thread-safe (scratch state in the
@@ -58,6 +61,19 @@ class Contacts {
   double DeepestUnjoinedOverlap(std::span<const Vec2> x);
 
  private:
+  // A pair that overlaps at the positions of the forces' list's last
+  // move: its cells, unit vector from i to j and k_c · δ. The positions
+  // are met twice (a sub-step's end is the next one's start), and only
+  // the velocities change between.
+  struct Touch {
+    int i;
+    int j;
+    Vec2 u;
+    double elastic;
+  };
+  // Makes touching_ for the positions x of `pairs`' last Update.
+  void FindTouching(std::span<const Vec2> x, const ContactPairs& pairs);
+
   std::vector<double> radius_;
   double stiffness_;
   double damping_;
@@ -69,6 +85,8 @@ class Contacts {
   // Candidates for Near: the admitted pairs, listed at its wider reach.
   ContactPairs near_;
   bool forces_use_all_;
+  std::vector<Touch> touching_;
+  long long touching_moves_ = -1;  // The list's moves() it is for.
 };
 
 }  // namespace animat

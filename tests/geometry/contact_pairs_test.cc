@@ -124,6 +124,43 @@ TEST(ContactPairsTest, SmallMovesKeepTheListLargeMovesRebuildIt) {
   EXPECT_TRUE(Listed(pairs, 1, 2));
 }
 
+TEST(ContactPairsTest, OtherRadiiAtTheNextRebuildAreHeeded) {
+  // 3.2 apart: beyond 1.2 · 2 + skin = 2.9 with unit radii, within it with
+  // radii 1.2 (1.2 · 2.4 + 0.5 = 3.38).
+  std::vector<Vec2> x = {{0.0, 0.0}, {3.2, 0.0}};
+  std::vector<double> r = {1.0, 1.0};
+  ContactPairs pairs(kSkin);
+  pairs.Update(x, r, kRange);
+  EXPECT_FALSE(Listed(pairs, 0, 1));
+  r = {1.2, 1.2};
+  x[1].x += 1.0;  // A rebuild...
+  pairs.Update(x, r, kRange);
+  x[1].x -= 1.0;  // ...and another, with the new radii.
+  pairs.Update(x, r, kRange);
+  EXPECT_EQ(pairs.builds(), 3);
+  EXPECT_TRUE(Listed(pairs, 0, 1));
+}
+
+TEST(ContactPairsTest, MovesCountOnlyOtherPositionsOrRanges) {
+  std::vector<Vec2> x = {{0.0, 0.0}, {2.0, 0.0}};
+  const std::vector<double> r = {1.0, 1.0};
+  ContactPairs pairs(kSkin);
+  EXPECT_EQ(pairs.moves(), 0);
+  pairs.Update(x, r, kRange);
+  EXPECT_EQ(pairs.moves(), 1);
+  pairs.Update(x, r, kRange);  // The same bits: no move.
+  EXPECT_EQ(pairs.moves(), 1);
+  const std::vector<Vec2> before = x;
+  x[1].x += 0.01;  // Within the skin: a move, no rebuild.
+  pairs.Update(x, r, kRange);
+  EXPECT_EQ(pairs.moves(), 2);
+  EXPECT_EQ(pairs.builds(), 1);
+  pairs.Update(before, r, kRange);  // Back: a move again.
+  EXPECT_EQ(pairs.moves(), 3);
+  pairs.Update(before, r, 2.0);  // Another range.
+  EXPECT_EQ(pairs.moves(), 4);
+}
+
 TEST(ContactPairsTest, AnotherRangeRebuildsTheList) {
   // 4.5 apart, radii 1: beyond 1.2 · 2 + skin = 2.9, within 2.5 · 2 = 5.
   const std::vector<Vec2> x = {{0.0, 0.0}, {4.5, 0.0}};

@@ -274,6 +274,59 @@ TEST(KernelsTest, PairKernelsGiveTheBaselinesBitsOnEveryPath) {
   EXPECT_EQ(some[12 + 9], 127.0);  // Far beyond: the cap.
 }
 
+// NearPairs on every path against its rule written out here: rows of
+// every length from 0 to 40 (whole vectors and tails), starting anywhere,
+// with bounds that exclude (negative), admit and refuse, and coordinates
+// that make the distance NaN or infinite.
+TEST(KernelsTest, NearPairsKeepsWhatItsRuleKeepsOnEveryPath) {
+  testing::FpTrapsOff traps_off;  // Some cases hold NaN and infinity.
+  RandomStream rng(9, 0, StreamPurpose::kRandomGenome);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (int trial = 0; trial < 400; ++trial) {
+    const int first = static_cast<int>(rng.NextU64() % 5);
+    const int last = first + static_cast<int>(rng.NextU64() % 41);
+    std::vector<double> x(last), y(last), bound2(last - first);
+    for (int j = 0; j < last; ++j) {
+      x[j] = rng.Uniform(-4.0, 4.0);
+      y[j] = rng.Uniform(-4.0, 4.0);
+      const uint64_t odd = rng.NextU64() % 40;
+      if (odd == 0) x[j] = nan;
+      if (odd == 1) y[j] = inf;
+    }
+    for (double& b : bound2) {
+      const uint64_t kind = rng.NextU64() % 6;
+      b = kind == 0 ? -1.0 : (kind == 1 ? 0.0 : rng.Uniform(0.0, 20.0));
+    }
+    const double xi = trial % 7 == 0 ? nan : rng.Uniform(-4.0, 4.0);
+    const double yi = rng.Uniform(-4.0, 4.0);
+    std::vector<int> expected;
+    for (int j = first; j < last; ++j) {
+      const double dx = x[j] - xi;
+      const double dy = y[j] - yi;
+      const double d2 = dx * dx + dy * dy;
+      const double b = bound2[j - first];
+      if (b >= 0.0 && !(d2 > b)) expected.push_back(j);
+    }
+    for (Isa isa : SupportedIsas()) {
+      std::vector<int> out(last - first + 8, -7);
+      kernels::NearPairsArgs args;
+      args.first = first;
+      args.last = last;
+      args.x = x.data();
+      args.y = y.data();
+      args.xi = xi;
+      args.yi = yi;
+      args.bound2 = bound2.data();
+      args.out = out.data();
+      const int count = kernels::NearPairs(isa, args);
+      ASSERT_EQ(std::vector<int>(out.begin(), out.begin() + count), expected)
+          << IsaName(isa) << " trial " << trial << ", row [" << first << ", "
+          << last << ")";
+    }
+  }
+}
+
 // Whole evaluations: the test genomes and random genomes that develop,
 // under the default configuration, in both precisions.
 std::vector<Genome> EvaluationGenomes() {
