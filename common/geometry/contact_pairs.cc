@@ -81,16 +81,14 @@ void ContactPairs::Update(std::span<const Vec2> position,
 bool ContactPairs::Valid(std::span<const Vec2> position) const {
   if (builds_ == 0 || position.size() != built_at_.size()) return false;
   const double limit = kMoveFraction * skin_;
-  const double limit2 = limit * limit;
-  bool valid = true;
-  for (size_t i = 0; i < position.size(); ++i) {
-    const Vec2 move = position[i] - built_at_[i];
-    // Written so that NaN makes the list invalid; no early exit, so the
-    // loop vectorises.
-    valid &=
-        InBounds(position[i]) && move.x * move.x + move.y * move.y <= limit2;
-  }
-  return valid;
+  kernels::WithinMoveArgs args;
+  args.points = position.size();
+  args.position = position.data();
+  args.built = built_at_.data();
+  // InBounds and the move, in vectors; NaN makes the list invalid.
+  args.bound = kBound;
+  args.limit2 = limit * limit;
+  return kernels::WithinMove(ActiveIsa(), args);
 }
 
 void ContactPairs::MakeBounds(std::span<const double> radius, double range) {

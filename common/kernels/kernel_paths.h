@@ -12,6 +12,7 @@
   void GrnStepDouble(const GrnStepArgs<double>& args); \
   void PairKernelsImpl(const PairKernelArgs& args);    \
   int NearPairsImpl(const NearPairsArgs& args);        \
+  bool WithinMoveImpl(const WithinMoveArgs& args);     \
   }
 
 ANIMAT_DECLARE_KERNEL_PATH(isa_baseline)

@@ -39,6 +39,10 @@ int NearPairs(Isa isa, const NearPairsArgs& args) {
   ANIMAT_ON_PATH(isa, NearPairsImpl(args));
 }
 
+bool WithinMove(Isa isa, const WithinMoveArgs& args) {
+  ANIMAT_ON_PATH(isa, WithinMoveImpl(args));
+}
+
 #undef ANIMAT_ON_PATH
 
 void GrnStep(const GrnStepArgs<float>& args) { GrnStep(ActiveIsa(), args); }

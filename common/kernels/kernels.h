@@ -13,6 +13,7 @@
 
 #include <cstddef>
 
+#include "common/base/vec2.h"
 #include "common/kernels/isa.h"
 
 namespace animat::kernels {
@@ -82,6 +83,20 @@ struct NearPairsArgs {
   int* out = nullptr;
 };
 int NearPairs(Isa isa, const NearPairsArgs& args);
+
+// Whether a pair list built at `built` still serves at `position`
+// (common/geometry/contact_pairs.h): for every one of the `points` points,
+// both coordinates of magnitude below `bound`, and
+// dx * dx + dy * dy <= limit2 with (dx, dy) = position - built. False when
+// any coordinate is NaN.
+struct WithinMoveArgs {
+  size_t points = 0;
+  const Vec2* position = nullptr;
+  const Vec2* built = nullptr;
+  double bound = 0.0;
+  double limit2 = 0.0;
+};
+bool WithinMove(Isa isa, const WithinMoveArgs& args);
 
 }  // namespace animat::kernels
 

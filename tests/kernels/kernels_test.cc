@@ -327,6 +327,70 @@ TEST(KernelsTest, NearPairsKeepsWhatItsRuleKeepsOnEveryPath) {
   }
 }
 
+// WithinMove on every path against its rule written out here: point
+// counts from 0 to 40, moves on both sides of the limit (and exactly at
+// it), coordinates at and beyond the bound, NaN and infinity anywhere.
+TEST(KernelsTest, WithinMoveSaysWhatItsRuleSaysOnEveryPath) {
+  testing::FpTrapsOff traps_off;  // Some cases hold NaN and infinity.
+  RandomStream rng(10, 0, StreamPurpose::kRandomGenome);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const double bound = 0x1p20;
+  const double limit2 = 0.225 * 0.225;
+  int within = 0, outside = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const size_t points = rng.NextU64() % 41;
+    std::vector<Vec2> built(points), position(points);
+    for (size_t k = 0; k < points; ++k) {
+      built[k] = {rng.Uniform(-50.0, 50.0), rng.Uniform(-50.0, 50.0)};
+      // Mostly small moves, so that whole lists pass.
+      const double reach = rng.NextU64() % 50 == 0 ? 0.4 : 0.15;
+      position[k] = built[k] + Vec2{rng.Uniform(-reach, reach),
+                                    rng.Uniform(-reach, reach)};
+      switch (rng.NextU64() % 400) {
+        case 0:
+          position[k].x = nan;
+          break;
+        case 1:
+          position[k].y = inf;
+          break;
+        case 2:
+          position[k] = {bound, 0.0};
+          built[k] = position[k];
+          break;
+        case 3:
+          built[k].y = nan;
+          break;
+        case 4:
+          position[k] = built[k] + Vec2{0.225, 0.0};
+          break;  // At it.
+        default:
+          break;
+      }
+    }
+    bool expected = true;
+    for (size_t k = 0; k < points; ++k) {
+      const Vec2 p = position[k];
+      const Vec2 move = p - built[k];
+      expected = expected && std::fabs(p.x) < bound && std::fabs(p.y) < bound &&
+                 move.x * move.x + move.y * move.y <= limit2;
+    }
+    (expected ? within : outside) += 1;
+    for (Isa isa : SupportedIsas()) {
+      kernels::WithinMoveArgs args;
+      args.points = points;
+      args.position = position.data();
+      args.built = built.data();
+      args.bound = bound;
+      args.limit2 = limit2;
+      ASSERT_EQ(kernels::WithinMove(isa, args), expected)
+          << IsaName(isa) << " trial " << trial << ", " << points << " points";
+    }
+  }
+  EXPECT_GT(within, 200);  // Both answers are tested.
+  EXPECT_GT(outside, 200);
+}
+
 // Whole evaluations: the test genomes and random genomes that develop,
 // under the default configuration, in both precisions.
 std::vector<Genome> EvaluationGenomes() {
