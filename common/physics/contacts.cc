@@ -74,7 +74,7 @@ void Contacts::FindTouching(std::span<const Vec2> x,
       const double delta = Overlap(d.x * d.x + d.y * d.y, s, &l);
       if (!(delta > 0.0)) continue;
       const Vec2 u = l > 0.0 ? d / l : Vec2{};
-      touching_.push_back({i, j, u, stiffness_ * delta});
+      touching_.push_back({i, j, u, delta, s, stiffness_ * delta});
     }
   }
   touching_moves_ = pairs.moves();
@@ -99,8 +99,17 @@ bool Contacts::Near(std::span<const Vec2> x, double margin) {
 double Contacts::DeepestUnjoinedOverlap(std::span<const Vec2> x) {
   assert(x.size() == radius_.size());
   unjoined_.Update(x, radius_, kRange);
-  const int n = static_cast<int>(radius_.size());
   double deepest = 0.0;
+  if (active_ && !forces_use_all_) {
+    // The forces' overlapping pairs are these positions' unjoined ones.
+    if (unjoined_.moves() != touching_moves_) FindTouching(x, unjoined_);
+    for (const Touch& t : touching_) {
+      const double depth = t.delta / t.s;
+      if (depth > deepest) deepest = depth;
+    }
+    return deepest;
+  }
+  const int n = static_cast<int>(radius_.size());
   for (int i = 0; i < n; ++i) {
     for (int j : unjoined_.Partners(i)) {
       const Vec2 d = x[j] - x[i];

@@ -62,13 +62,16 @@ class Contacts {
 
  private:
   // A pair that overlaps at the positions of the forces' list's last
-  // move: its cells, unit vector from i to j and k_c · δ. The positions
-  // are met twice (a sub-step's end is the next one's start), and only
-  // the velocities change between.
+  // move: its cells, unit vector from i to j, δ, r_i + r_j and k_c · δ.
+  // The positions are met twice (a sub-step's end is the next one's
+  // start), and only the velocities change between; under UNJOINED the
+  // deepest overlap reads them too.
   struct Touch {
     int i;
     int j;
     Vec2 u;
+    double delta;
+    double s;
     double elastic;
   };
   // Makes touching_ for the positions x of `pairs`' last Update.
