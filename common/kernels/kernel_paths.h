@@ -6,13 +6,15 @@
 
 #include "common/kernels/kernels.h"
 
-#define ANIMAT_DECLARE_KERNEL_PATH(path)               \
-  namespace animat::kernels::path {                    \
-  void GrnStepFloat(const GrnStepArgs<float>& args);   \
-  void GrnStepDouble(const GrnStepArgs<double>& args); \
-  void PairKernelsImpl(const PairKernelArgs& args);    \
-  int NearPairsImpl(const NearPairsArgs& args);        \
-  bool WithinMoveImpl(const WithinMoveArgs& args);     \
+#define ANIMAT_DECLARE_KERNEL_PATH(path)                 \
+  namespace animat::kernels::path {                      \
+  void GrnStepFloat(const GrnStepArgs<float>& args);     \
+  void GrnStepDouble(const GrnStepArgs<double>& args);   \
+  void PairKernelsImpl(const PairKernelArgs& args);      \
+  int NearPairsImpl(const NearPairsArgs& args);          \
+  bool WithinMoveImpl(const WithinMoveArgs& args);       \
+  void VerletPredictImpl(const VerletPredictArgs& args); \
+  void VerletCorrectImpl(const VerletCorrectArgs& args); \
   }
 
 ANIMAT_DECLARE_KERNEL_PATH(isa_baseline)

@@ -43,6 +43,14 @@ bool WithinMove(Isa isa, const WithinMoveArgs& args) {
   ANIMAT_ON_PATH(isa, WithinMoveImpl(args));
 }
 
+void VerletPredict(Isa isa, const VerletPredictArgs& args) {
+  ANIMAT_ON_PATH(isa, VerletPredictImpl(args));
+}
+
+void VerletCorrect(Isa isa, const VerletCorrectArgs& args) {
+  ANIMAT_ON_PATH(isa, VerletCorrectImpl(args));
+}
+
 #undef ANIMAT_ON_PATH
 
 void GrnStep(const GrnStepArgs<float>& args) { GrnStep(ActiveIsa(), args); }

@@ -98,6 +98,35 @@ struct WithinMoveArgs {
 };
 bool WithinMove(Isa isa, const WithinMoveArgs& args);
 
+// Velocity Verlet's predictor over `points` points
+// (common/physics/soft_body.cc), with Vec2's operators:
+// stage_x = x + v h + a half_h2 (left to right; half_h2 = h² / 2) and
+// stage_v = v + a h. Outputs may not overlap inputs.
+struct VerletPredictArgs {
+  size_t points = 0;
+  const Vec2* x = nullptr;
+  const Vec2* v = nullptr;
+  const Vec2* a = nullptr;
+  Vec2* stage_x = nullptr;
+  Vec2* stage_v = nullptr;
+  double h = 0.0;
+  double half_h2 = 0.0;
+};
+void VerletPredict(Isa isa, const VerletPredictArgs& args);
+
+// Its corrector: x = stage_x and v = v + (a0 + a1) half_h. x may not
+// overlap the inputs.
+struct VerletCorrectArgs {
+  size_t points = 0;
+  const Vec2* stage_x = nullptr;
+  const Vec2* a0 = nullptr;
+  const Vec2* a1 = nullptr;
+  Vec2* x = nullptr;
+  Vec2* v = nullptr;
+  double half_h = 0.0;
+};
+void VerletCorrect(Isa isa, const VerletCorrectArgs& args);
+
 }  // namespace animat::kernels
 
 #endif  // ANIMAT_COMMON_KERNELS_KERNELS_H_

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "common/geometry/polygon.h"
+#include "common/kernels/kernels.h"
 #include "common/physics/edge_geometry.h"
 
 namespace animat {
@@ -367,22 +368,30 @@ void VerletPredict(const MotionState& state, const std::vector<Vec2>& a,
   const size_t nodes = state.position.size();
   stage->position.resize(nodes);
   stage->velocity.resize(nodes);
-  const double half_h2 = 0.5 * h * h;
-  for (size_t i = 0; i < nodes; ++i) {
-    stage->position[i] =
-        state.position[i] + state.velocity[i] * h + a[i] * half_h2;
-    stage->velocity[i] = state.velocity[i] + a[i] * h;
-  }
+  kernels::VerletPredictArgs args;
+  args.points = nodes;
+  args.x = state.position.data();
+  args.v = state.velocity.data();
+  args.a = a.data();
+  args.stage_x = stage->position.data();
+  args.stage_v = stage->velocity.data();
+  args.h = h;
+  args.half_h2 = 0.5 * h * h;
+  kernels::VerletPredict(ActiveIsa(), args);
 }
 
 // Its corrector: x <- the stage's positions, v <- v + (a0 + a1) h / 2.
 void VerletCorrect(const MotionState& stage, const std::vector<Vec2>& a0,
                    const std::vector<Vec2>& a1, double h, MotionState* state) {
-  const double half_h = 0.5 * h;
-  for (size_t i = 0; i < state->position.size(); ++i) {
-    state->position[i] = stage.position[i];
-    state->velocity[i] += (a0[i] + a1[i]) * half_h;
-  }
+  kernels::VerletCorrectArgs args;
+  args.points = state->position.size();
+  args.stage_x = stage.position.data();
+  args.a0 = a0.data();
+  args.a1 = a1.data();
+  args.x = state->position.data();
+  args.v = state->velocity.data();
+  args.half_h = 0.5 * h;
+  kernels::VerletCorrect(ActiveIsa(), args);
 }
 
 }  // namespace

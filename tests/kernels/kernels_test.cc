@@ -391,6 +391,62 @@ TEST(KernelsTest, WithinMoveSaysWhatItsRuleSaysOnEveryPath) {
   EXPECT_GT(outside, 200);
 }
 
+// The Verlet predictor and corrector on every path against Vec2's
+// operators written out here, bit for bit, for 0 to 40 points.
+TEST(KernelsTest, VerletPredictorAndCorrectorGiveTheOperatorsBitsOnEveryPath) {
+  RandomStream rng(11, 0, StreamPurpose::kRandomGenome);
+  auto random = [&](size_t n, double scale) {
+    std::vector<Vec2> v(n);
+    for (Vec2& p : v) {
+      p = {rng.Uniform(-scale, scale), rng.Uniform(-scale, scale)};
+    }
+    return v;
+  };
+  for (size_t points = 0; points <= 40; ++points) {
+    const std::vector<Vec2> x = random(points, 30.0), v = random(points, 3.0),
+                            a0 = random(points, 500.0),
+                            a1 = random(points, 500.0);
+    const double h = 0.05 / 4;
+    const double half_h2 = 0.5 * h * h;
+    for (Isa isa : SupportedIsas()) {
+      std::vector<Vec2> stage_x(points), stage_v(points);
+      kernels::VerletPredictArgs predict;
+      predict.points = points;
+      predict.x = x.data();
+      predict.v = v.data();
+      predict.a = a0.data();
+      predict.stage_x = stage_x.data();
+      predict.stage_v = stage_v.data();
+      predict.h = h;
+      predict.half_h2 = half_h2;
+      kernels::VerletPredict(isa, predict);
+      std::vector<Vec2> end_x(points), end_v = v;
+      kernels::VerletCorrectArgs correct;
+      correct.points = points;
+      correct.stage_x = stage_x.data();
+      correct.a0 = a0.data();
+      correct.a1 = a1.data();
+      correct.x = end_x.data();
+      correct.v = end_v.data();
+      correct.half_h = 0.5 * h;
+      kernels::VerletCorrect(isa, correct);
+      for (size_t i = 0; i < points; ++i) {
+        const Vec2 sx = x[i] + v[i] * h + a0[i] * half_h2;
+        const Vec2 sv = v[i] + a0[i] * h;
+        const Vec2 ev = v[i] + (a0[i] + a1[i]) * (0.5 * h);
+        ASSERT_EQ(Bits(stage_x[i].x), Bits(sx.x)) << IsaName(isa) << " " << i;
+        ASSERT_EQ(Bits(stage_x[i].y), Bits(sx.y)) << IsaName(isa) << " " << i;
+        ASSERT_EQ(Bits(stage_v[i].x), Bits(sv.x)) << IsaName(isa) << " " << i;
+        ASSERT_EQ(Bits(stage_v[i].y), Bits(sv.y)) << IsaName(isa) << " " << i;
+        ASSERT_EQ(Bits(end_x[i].x), Bits(sx.x)) << IsaName(isa) << " " << i;
+        ASSERT_EQ(Bits(end_x[i].y), Bits(sx.y)) << IsaName(isa) << " " << i;
+        ASSERT_EQ(Bits(end_v[i].x), Bits(ev.x)) << IsaName(isa) << " " << i;
+        ASSERT_EQ(Bits(end_v[i].y), Bits(ev.y)) << IsaName(isa) << " " << i;
+      }
+    }
+  }
+}
+
 // Whole evaluations: the test genomes and random genomes that develop,
 // under the default configuration, in both precisions.
 std::vector<Genome> EvaluationGenomes() {
