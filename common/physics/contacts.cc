@@ -54,7 +54,7 @@ void Contacts::AddForces(std::span<const Vec2> x, std::span<const Vec2> v,
   if (pairs.moves() != touching_moves_) FindTouching(x, pairs);
   for (const Touch& t : touching_) {
     const double w = -Dot(v[t.j] - v[t.i], t.u);
-    const double f = t.elastic + damping_ * w;
+    const double f = stiffness_ * t.delta + damping_ * w;
     if (!(f > 0.0)) continue;  // Contacts push, never pull.
     const Vec2 fu = t.u * f;
     force[t.j] += fu;
@@ -74,7 +74,7 @@ void Contacts::FindTouching(std::span<const Vec2> x,
       const double delta = Overlap(d.x * d.x + d.y * d.y, s, &l);
       if (!(delta > 0.0)) continue;
       const Vec2 u = l > 0.0 ? d / l : Vec2{};
-      touching_.push_back({i, j, u, delta, s, stiffness_ * delta});
+      touching_.push_back({i, j, u, delta, s});
     }
   }
   touching_moves_ = pairs.moves();

@@ -62,7 +62,7 @@ class Contacts {
 
  private:
   // A pair that overlaps at the positions of the forces' list's last
-  // move: its cells, unit vector from i to j, δ, r_i + r_j and k_c · δ.
+  // move: its cells, unit vector from i to j, δ and r_i + r_j.
   // The positions are met twice (a sub-step's end is the next one's
   // start), and only the velocities change between; under UNJOINED the
   // deepest overlap reads them too.
@@ -72,7 +72,6 @@ class Contacts {
     Vec2 u;
     double delta;
     double s;
-    double elastic;
   };
   // Makes touching_ for the positions x of `pairs`' last Update.
   void FindTouching(std::span<const Vec2> x, const ContactPairs& pairs);
