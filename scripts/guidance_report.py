@@ -5,10 +5,13 @@ and writes what docs/results.md reports under "Active guidance": per run
 the best's score, the final distance to each trial's source, whether it
 ends closer to all of them, its knock-outs (the chemical and each
 morphogen silenced during motion, `animat analyze --knockouts`), and per
-generation the share of the population that ends closer to every source.
+generation the share of the population that ends closer to every source,
+and the run's ok individuals with their deepest unjoined overlap and how
+many lie above --overlap-bound.
 
   scripts/guidance_report.py [--name guidance] [--out out/NAME]
       [--dest docs/results] [--animat build/bin/animat]
+      [--overlap-bound 0.1]
 
 NAME names the runs (default guidance): their stores are NAME-seedS.db,
 as scripts/seeded_runs.sh --name NAME or a campaign's runs named NAME
@@ -38,6 +41,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import replication_report as rr  # noqa: E402  (its store and analysis code)
+from run_record import overlap_counts  # noqa: E402
 
 # A trial counts as ending closer to its source when it ends at least this
 # much closer (radii): a body that does not swim drifts by about 1e-8.
@@ -90,6 +94,16 @@ def closer_by_generation(path, run_id, source_distance):
     db.close()
     return [{"generation": g, "ok": n, "closer_to_all": c}
             for g, n, c in rows]
+
+
+def overlap(path, run_id, bound):
+    """The run's ok individuals, their deepest unjoined overlap and how
+    many lie above `bound` (run_record.overlap_counts)."""
+    db = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
+    try:
+        return overlap_counts(db, run_id, bound)
+    finally:
+        db.close()
 
 
 def simulate(animat, genome, config):
@@ -176,7 +190,7 @@ def knockout_rows(name, k, source_distance):
     return rows
 
 
-def report_run(animat, path, name, seed, dest):
+def report_run(animat, path, name, seed, dest, bound):
     s = rr.store_summary(path)
     trials, source_distance = guidance_of(s["model_text"])
     best = s["best"]
@@ -209,6 +223,7 @@ def report_run(animat, path, name, seed, dest):
         "closer_by_generation": closer_by_generation(
             path, s["run_id"], source_distance),
         "knockouts": knockouts(animat, path, best["id"]),
+        "overlap": overlap(path, s["run_id"], bound),
     }
 
 
@@ -259,6 +274,13 @@ def tables(runs):
         for p in per[::step] + ([per[-1]] if (len(per) - 1) % step else []):
             lines.append(f"| {r['name']} | {p['generation']} | {p['ok']} | "
                          f"{p['closer_to_all']} |")
+    lines += ["", "| run | ok individuals | deepest unjoined overlap | "
+              "above the bound |", "|---|---:|---:|---:|"]
+    for r in runs:
+        o = r["overlap"]
+        deepest = "—" if o["deepest"] is None else f"{o['deepest']:.1%}"
+        lines.append(f"| {r['name']} | {o['ok']:,} | {deepest} | "
+                     f"{o['above_bound']} (bound {o['bound']:.0%}) |")
     lines += ["", "| run | silenced | status | score | change | distance "
               "swum | ends closer to | final distances | paths |",
               "|---|---|---|---:|---:|---:|---:|---|---|"]
@@ -280,12 +302,19 @@ def main():
     # than the runs, and each best is checked to give its stored fitness
     # to the bit.
     parser.add_argument("--animat", default="build/bin/animat")
+    parser.add_argument("--overlap-bound", type=float, default=0.1,
+                        help="the deepest unjoined overlap allowed, a "
+                        "fraction of r_i + r_j (docs/model.md §8.6); ok "
+                        "individuals above it are counted per run")
     args = parser.parse_args()
+    if not 0.0 <= args.overlap_bound < float("inf"):
+        parser.error("--overlap-bound must be a finite fraction >= 0")
     animat = args.animat
     args.out = args.out or os.path.join("out", args.name)
     os.makedirs(os.path.join(args.dest, "bests"), exist_ok=True)
 
-    runs = [report_run(animat, path, name, seed, args.dest)
+    runs = [report_run(animat, path, name, seed, args.dest,
+                       args.overlap_bound)
             for path, name, seed in rr.seeded_stores(args.out, args.name)]
     dbs = []
     for r in runs:

@@ -63,6 +63,18 @@ def top_phenotypes(db, run_id, generation, top):
     return found[:top]
 
 
+def overlap_counts(db, run_id, bound):
+    """The run's ok individuals, their deepest unjoined overlap (a fraction
+    of r_i + r_j, docs/model.md §8.6; None without one) and how many lie
+    above `bound`."""
+    ok, deepest, above = db.execute(
+        "SELECT COUNT(*), MAX(max_overlap), COALESCE(SUM(max_overlap > ?), 0)"
+        " FROM individuals WHERE run_id = ? AND status = 'ok'",
+        (bound, run_id)).fetchone()
+    return {"bound": bound, "ok": ok, "deepest": deepest,
+            "above_bound": above}
+
+
 def read_store(path, top, bound):
     """Everything the record holds but the genomes."""
     db = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
@@ -86,10 +98,6 @@ def read_store(path, top, bound):
             "SELECT id, generation, fitness, state_hash, cells, springs, "
             "chambers, skin_edges, max_overlap FROM individuals WHERE "
             "run_id = ? AND id = ?", (run_id, stats[-1]["best_id"])).fetchone())
-        ok, deepest, above = db.execute(
-            "SELECT COUNT(*), MAX(max_overlap), COALESCE(SUM(max_overlap > ?),"
-            " 0) FROM individuals WHERE run_id = ? AND status = 'ok'",
-            (bound, run_id)).fetchone()
         statuses = {}
         for part, test in (("initial", "= 0"), ("offspring", "> 0")):
             statuses[part] = {r[0]: r[1] for r in db.execute(
@@ -101,8 +109,7 @@ def read_store(path, top, bound):
             "state": run["state"], "config_text": run["config_text"],
             "generations": last + 1, "statistics": stats, "best": best,
             "statuses": statuses,
-            "overlap": {"bound": bound, "ok": ok, "deepest": deepest,
-                        "above_bound": above},
+            "overlap": overlap_counts(db, run_id, bound),
             "phenotypes": top_phenotypes(db, run_id, last, top),
         }
     finally:
@@ -132,6 +139,8 @@ def main():
     args = parser.parse_args()
     if args.top < 1:
         parser.error("--top must be at least 1")
+    if not 0.0 <= args.overlap_bound < float("inf"):
+        parser.error("--overlap-bound must be a finite fraction >= 0")
     if not os.path.isfile(args.db):
         sys.exit(f"run_record.py: {args.db}: no such store")
     try:

@@ -184,6 +184,22 @@ class GuidanceArmTest(unittest.TestCase):
             with open(os.path.join(dest, "lead.json")) as f:
                 run_, = json.load(f)["runs"]
             self.assertEqual(run_["name"], "lead-seed3")
+            overlap = run_["overlap"]
+            self.assertEqual(overlap["bound"], 0.1)
+            self.assertGreater(overlap["ok"], 0)
+            self.assertLessEqual(overlap["above_bound"], overlap["ok"])
+            with open(os.path.join(dest, "lead.md")) as f:
+                self.assertIn("| lead-seed3 | " + f"{overlap['ok']:,} | ",
+                              f.read())
+
+    def test_a_bad_overlap_bound_is_refused_before_any_work(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            for bad in ("nan", "-0.1", "inf"):
+                run = script("guidance_report.py", "--out", tmp, "--dest",
+                             tmp, "--overlap-bound", bad)
+                self.assertEqual(run.returncode, 2, bad)
+                self.assertIn("--overlap-bound", run.stderr)
+                self.assertEqual(os.listdir(tmp), [], bad)
 
 
 if __name__ == "__main__":

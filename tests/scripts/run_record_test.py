@@ -91,6 +91,19 @@ class RunRecordTest(unittest.TestCase):
         self.assertEqual(r["statuses"]["offspring"],
                          {"ok": 6, "too_few_cells": 1})
 
+    def test_overlap_counts_at_another_bound(self):
+        db = sqlite3.connect(self.path)
+        try:
+            # Above 0.13: 14, 16 and 20; run 1's individual is not counted.
+            self.assertEqual(run_record.overlap_counts(db, 2, 0.13),
+                             {"bound": 0.13, "ok": 9, "deepest": 0.2,
+                              "above_bound": 3})
+            self.assertEqual(run_record.overlap_counts(db, 3, 0.1),
+                             {"bound": 0.1, "ok": 0, "deepest": None,
+                              "above_bound": 0})
+        finally:
+            db.close()
+
     def test_strategy_report_reads_a_record(self):
         record = run_record.read_store(self.path, 5, 0.1)
         record.update(run="dn0.1-seed7", top=5)
