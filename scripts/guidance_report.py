@@ -41,7 +41,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import replication_report as rr  # noqa: E402  (its store and analysis code)
-from run_record import overlap_counts  # noqa: E402
+from run_record import overlap_bound, overlap_counts  # noqa: E402
 
 # A trial counts as ending closer to its source when it ends at least this
 # much closer (radii): a body that does not swim drifts by about 1e-8.
@@ -302,13 +302,11 @@ def main():
     # than the runs, and each best is checked to give its stored fitness
     # to the bit.
     parser.add_argument("--animat", default="build/bin/animat")
-    parser.add_argument("--overlap-bound", type=float, default=0.1,
+    parser.add_argument("--overlap-bound", type=overlap_bound, default=0.1,
                         help="the deepest unjoined overlap allowed, a "
                         "fraction of r_i + r_j (docs/model.md §8.6); ok "
                         "individuals above it are counted per run")
     args = parser.parse_args()
-    if not 0.0 <= args.overlap_bound < float("inf"):
-        parser.error("--overlap-bound must be a finite fraction >= 0")
     animat = args.animat
     args.out = args.out or os.path.join("out", args.name)
     os.makedirs(os.path.join(args.dest, "bests"), exist_ok=True)

@@ -75,6 +75,18 @@ def overlap_counts(db, run_id, bound):
             "above_bound": above}
 
 
+def overlap_bound(text):
+    """argparse type of --overlap-bound: a finite fraction >= 0."""
+    try:
+        bound = float(text)
+    except ValueError:
+        bound = float("nan")
+    if not 0.0 <= bound < float("inf"):
+        raise argparse.ArgumentTypeError(
+            f"{text!r} is not a finite fraction >= 0")
+    return bound
+
+
 def read_store(path, top, bound):
     """Everything the record holds but the genomes."""
     db = sqlite3.connect(f"file:{path}?mode=ro", uri=True)
@@ -134,13 +146,11 @@ def main():
     parser.add_argument("--name", required=True)
     parser.add_argument("--animat", default="build/bin/animat")
     parser.add_argument("--top", type=int, default=5)
-    parser.add_argument("--overlap-bound", type=float, default=0.1)
+    parser.add_argument("--overlap-bound", type=overlap_bound, default=0.1)
     parser.add_argument("--dest", default="docs/results/runs")
     args = parser.parse_args()
     if args.top < 1:
         parser.error("--top must be at least 1")
-    if not 0.0 <= args.overlap_bound < float("inf"):
-        parser.error("--overlap-bound must be a finite fraction >= 0")
     if not os.path.isfile(args.db):
         sys.exit(f"run_record.py: {args.db}: no such store")
     try:

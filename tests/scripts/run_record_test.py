@@ -5,6 +5,7 @@ the last completed generation's ok members only), the overlap count, the
 statuses of generation 0 and of the offspring; and scripts/
 strategy_report.py reading the record in place of the store."""
 
+import argparse
 import json
 import os
 import sqlite3
@@ -103,6 +104,13 @@ class RunRecordTest(unittest.TestCase):
                               "above_bound": 0})
         finally:
             db.close()
+
+    def test_the_bound_must_be_a_finite_fraction(self):
+        self.assertEqual(run_record.overlap_bound("0.1"), 0.1)
+        self.assertEqual(run_record.overlap_bound("0"), 0.0)
+        for bad in ("nan", "-0.1", "inf", "", "tenth"):
+            with self.assertRaises(argparse.ArgumentTypeError, msg=bad):
+                run_record.overlap_bound(bad)
 
     def test_strategy_report_reads_a_record(self):
         record = run_record.read_store(self.path, 5, 0.1)
