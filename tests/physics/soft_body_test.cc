@@ -15,11 +15,13 @@
 #include <numbers>
 #include <ostream>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "common/base/vec2.h"
 #include "common/body/body.h"
+#include "common/geometry/polygon.h"
 #include "common/physics/physics_params.h"
 #include "tests/physics/body_source.h"
 #include "tests/test_util.h"
@@ -385,6 +387,59 @@ TEST(SoftBodyTest, PressureMatchesTheModelFormulaOnRandomChambers) {
           "trial " + std::to_string(trial) + " node " + std::to_string(i));
     }
   }
+}
+
+// docs/model.md §7.3's pressure written one edge at a time: the area by
+// WalkArea, then each edge's push added to its start, then to its end, in
+// the walk's order.
+std::vector<Vec2> PressureOneEdgeAtATime(const Body& body,
+                                         const std::vector<Vec2>& x,
+                                         double cp) {
+  std::vector<Vec2> force(body.nodes());
+  for (const Chamber& ch : body.chambers) {
+    const double area = WalkArea(
+        x.data(), std::span<const int>(ch.walk.data(), ch.walk.size()));
+    const double half = 0.5 * cp * (1.0 - area / ch.rest_area);
+    const size_t m = ch.walk.size();
+    for (size_t k = 0; k < m; ++k) {
+      const int a = ch.walk[k];
+      const int b = ch.walk[(k + 1) % m];
+      const Vec2 push = Vec2{x[b].y - x[a].y, -(x[b].x - x[a].x)} * half;
+      force[a] += push;
+      force[b] += push;
+    }
+  }
+  return force;
+}
+
+TEST(SoftBodyTest, PressureHasTheBitsOfOneEdgeAtATime) {
+  // Triangles take a path of their own; longer walks the general loop.
+  Source source(81);
+  int triangles = 0;
+  int longer = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    const Body body = RandomBody(source, source.Int(3, 24), 6.0);
+    for (const Chamber& ch : body.chambers) {
+      ++(ch.walk.size() == 3 ? triangles : longer);
+    }
+    PhysicsParams params;
+    params.pressure = source.Uniform(1, 20);
+    SoftBody soft(body, params);
+    MotionState state = AtRest(body);
+    for (Vec2& x : state.position) {
+      x += Vec2{source.Uniform(-0.3, 0.3), source.Uniform(-0.3, 0.3)};
+    }
+    const std::vector<Vec2> expected =
+        PressureOneEdgeAtATime(body, state.position, params.pressure);
+    std::vector<Vec2> f(body.nodes());
+    soft.AddPressureForces(state, f.data());
+    for (int i = 0; i < body.nodes(); ++i) {
+      EXPECT_EQ(f[i].x, expected[i].x) << "trial " << trial << " node " << i;
+      EXPECT_EQ(f[i].y, expected[i].y) << "trial " << trial << " node " << i;
+    }
+  }
+  EXPECT_GT(triangles, 0);
+  EXPECT_GT(longer, 0);
 }
 
 TEST(SoftBodyTest, PressurePushesOnAnEdgeDanglingIntoAChamberCancel) {
