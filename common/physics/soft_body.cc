@@ -113,37 +113,6 @@ void SoftBody::AddPressure(const Vec2* x, Vec2* force) const {
   for (size_t c = 0; c < rest_area_.size(); ++c) {
     const int begin = walk_begin_[c];
     const int end = walk_begin_[c + 1];
-    if (end - begin == 3) {
-      // A triangle (every chamber of a triangulated body): the loops
-      // below written out, with the same operations in the same order.
-      const int i0 = walk[begin];
-      const int i1 = walk[begin + 1];
-      const int i2 = walk[begin + 2];
-      const Vec2 p0 = x[i0];
-      const Vec2 p1 = x[i1];
-      const Vec2 p2 = x[i2];
-      double twice = 0.0;
-      twice += Cross(p1 - p0, p2 - p0);
-      const double area = 0.5 * twice;
-      const double half = 0.5 * cp * (1.0 - area / rest_area_[c]);
-      const auto push = [half](Vec2 a, Vec2 b) {
-        return Vec2{b.y - a.y, -(b.x - a.x)} * half;
-      };
-      const Vec2 e0 = push(p0, p1);
-      const Vec2 e1 = push(p1, p2);
-      const Vec2 e2 = push(p2, p0);
-      force[i0] += e0;
-      Vec2 sum = force[i1];
-      sum += e0;
-      sum += e1;
-      force[i1] = sum;
-      sum = force[i2];
-      sum += e1;
-      sum += e2;
-      force[i2] = sum;
-      force[i0] += e2;
-      continue;
-    }
     // WalkArea's operations, in its order (so S == S0 at rest, bit for
     // bit): the shoelace sum relative to the first vertex.
     const Vec2 origin = x[walk[begin]];
