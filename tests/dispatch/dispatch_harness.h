@@ -65,13 +65,15 @@ inline constexpr int kHeartbeatMs = 100;
 // starves a process for a few hundred milliseconds must not make a live
 // peer look lost.
 inline constexpr int kPatientHeartbeatMs = 1000;
-// Motion steps that make a viable genome's evaluation last about 100 ms:
-// about 2.5 us a step in an optimised build, some 50 times more in a Debug
-// build with sanitizers (the tests that act during an evaluation use it).
+// Motion steps that make a viable genome's evaluation last long enough for
+// a test to act during it (the tests that do use it): some 0.2 s in an
+// optimised build (about 5 us a step under the default physics), and some
+// 0.4 s in a build with assertions, which takes a tenth of the steps (the
+// sanitizer builds at -O1; about three times longer at -O0).
 #ifdef NDEBUG
-inline constexpr int kMotionStepsFor100Ms = 40000;
+inline constexpr int kSlowMotionSteps = 40000;
 #else
-inline constexpr int kMotionStepsFor100Ms = 4000;
+inline constexpr int kSlowMotionSteps = 4000;
 #endif
 // Bounds on waits that normally end far sooner (they end as soon as the
 // condition holds); generous for sanitizer builds. On simulated time, of

@@ -25,7 +25,7 @@ namespace animat::testing {
 namespace {
 
 // `count` individuals cycling through the viable genomes: each runs the
-// whole motion phase (some 30 ms with kMotionStepsFor100Ms / 4 steps).
+// whole motion phase (some 50 ms with kSlowMotionSteps / 4 steps).
 std::vector<v1::Genome> SlowGenomes(int count) {
   const std::vector<v1::Genome> viable = ViableGenomes();
   std::vector<v1::Genome> genomes;
@@ -63,7 +63,7 @@ TEST_F(DispatchTest, EveryIndividualCompletesOnceAsEvaluatedDirectly) {
 }
 
 TEST_F(DispatchTest, KilledWorkersLeasesAreEvaluatedElsewhereExactlyOnce) {
-  config_.evaluation.motion_steps = kMotionStepsFor100Ms / 4;
+  config_.evaluation.motion_steps = kSlowMotionSteps / 4;
   const std::vector<Individual> population = Population(SlowGenomes(6), 100);
   ASSERT_TRUE(StartDispatcher());
   Submit(population);
@@ -113,7 +113,7 @@ TEST_F(DispatchTest, WorkerJoiningLateGetsTheQueuedWork) {
 }
 
 TEST_F(DispatchTest, FrozenWorkersLeasesExpireAndAreDoneElsewhereOnce) {
-  config_.evaluation.motion_steps = kMotionStepsFor100Ms / 4;
+  config_.evaluation.motion_steps = kSlowMotionSteps / 4;
   const std::vector<Individual> population = Population(SlowGenomes(6), 300);
   const std::vector<Individual> afterwards = Population(MixedGenomes(8), 350);
   ASSERT_TRUE(StartDispatcher());
@@ -368,15 +368,18 @@ std::pair<int, int> StoppingCounts(const std::string& output) {
 }
 
 TEST_F(DispatchTest, TerminatedWorkerHandsBackUnstartedWorkAndExitsCleanly) {
-  // One fast individual, then slow ones (about 100 ms each, more under
+  // One fast individual, then slow ones (some 0.6 s each, more under
   // load). After the fast one, the one-thread worker A receives the first
   // slow one (1001) and the next (1002) together, and is terminated as
   // soon as it logs having received 1002: its thread is then on 1001 (or
   // has not yet taken it), so 1002 at least is handed back unstarted.
-  // Nothing here waits on liveness, so the heartbeat is slow: a loaded
-  // machine that starves either side for 300 ms must not make it look
-  // lost (A would then exit without its goodbye).
-  config_.evaluation.motion_steps = kMotionStepsFor100Ms;
+  // That holds while this side reacts to the log within 1001's
+  // evaluation, hence three times the usual slow steps: a loaded machine
+  // may starve this process for a few hundred milliseconds. Nothing here
+  // waits on liveness, so the heartbeat is slow: a loaded machine that
+  // starves either side for 300 ms must not make it look lost (A would
+  // then exit without its goodbye).
+  config_.evaluation.motion_steps = 3 * kSlowMotionSteps;
   const v1::Genome slow = DataGenome("seed-1198");
   const std::vector<Individual> population = Population(
       {DataGenome("example"), slow, slow, DataGenome("seed-1-nonviable"),
