@@ -15,6 +15,12 @@
 //   BM_SpringsLanes         eight in the lanes, gathers and ordered scatters
 //   BM_SpringsLanesBuffered eight in the lanes, then each lane's forces
 //                           added by scalar code in spring order
+//   BM_SpringsLanesSameBody eight copies of one body in the lanes (as a
+//                           guidance evaluation's trials are: one body,
+//                           other stimuli), each with its own positions
+//                           and velocities: node i of every lane lies
+//                           together, so a spring reads and adds with
+//                           plain vector loads and stores, no gathers
 //
 // Times are per animat. Before timing, every lane's forces are checked bit
 // for bit against the scalar code; a mismatch fails the run (exit 1).
@@ -75,6 +81,8 @@ struct Batch {
   std::vector<double> rest;  // [s * kLanes + lane]
   std::vector<double> x, y, vx, vy, fx, fy;
   std::vector<double> cx, cy;  // Buffered contributions, per spring.
+  // With one body in every lane: spring s's nodes (else empty).
+  std::vector<int> na, nb;
 };
 
 constexpr __mmask8 kAll = 0xff;
@@ -159,6 +167,49 @@ __attribute__((target("avx512f"))) void LaneForcesBuffered(Batch* p) {
   }
 }
 
+// One body in every lane: spring s joins the same nodes in each, so its
+// lanes' values are one vector load apart from node to node, and one
+// vector addition per node and coordinate keeps every lane's order.
+__attribute__((target("avx512f"))) void LaneForcesSameBody(Batch* p) {
+  const __m512d zero = _mm512_setzero_pd();
+  const __m512d stiffness = _mm512_set1_pd(kStiffness);
+  const __m512d damping = _mm512_set1_pd(kDamping);
+  const double* x = p->x.data();
+  const double* y = p->y.data();
+  const double* vx = p->vx.data();
+  const double* vy = p->vy.data();
+  double* fxs = p->fx.data();
+  double* fys = p->fy.data();
+  for (int s = 0; s < p->springs; ++s) {
+    const int a = p->na[s] * kLanes;
+    const int b = p->nb[s] * kLanes;
+    const __m512d dx =
+        _mm512_sub_pd(_mm512_loadu_pd(x + b), _mm512_loadu_pd(x + a));
+    const __m512d dy =
+        _mm512_sub_pd(_mm512_loadu_pd(y + b), _mm512_loadu_pd(y + a));
+    const __m512d l = _mm512_maskz_sqrt_pd(
+        kAll, _mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)));
+    const __mmask8 positive = _mm512_cmp_pd_mask(l, zero, _CMP_GT_OQ);
+    const __m512d ux = _mm512_maskz_div_pd(positive, dx, l);
+    const __m512d uy = _mm512_maskz_div_pd(positive, dy, l);
+    const __m512d elastic = _mm512_mul_pd(
+        stiffness, _mm512_sub_pd(l, _mm512_loadu_pd(&p->rest[s * kLanes])));
+    const __m512d dvx =
+        _mm512_sub_pd(_mm512_loadu_pd(vx + b), _mm512_loadu_pd(vx + a));
+    const __m512d dvy =
+        _mm512_sub_pd(_mm512_loadu_pd(vy + b), _mm512_loadu_pd(vy + a));
+    const __m512d dot =
+        _mm512_add_pd(_mm512_mul_pd(dvx, ux), _mm512_mul_pd(dvy, uy));
+    const __m512d force = _mm512_add_pd(elastic, _mm512_mul_pd(damping, dot));
+    const __m512d fx = _mm512_mul_pd(ux, force);
+    const __m512d fy = _mm512_mul_pd(uy, force);
+    _mm512_storeu_pd(fxs + a, _mm512_add_pd(_mm512_loadu_pd(fxs + a), fx));
+    _mm512_storeu_pd(fys + a, _mm512_add_pd(_mm512_loadu_pd(fys + a), fy));
+    _mm512_storeu_pd(fxs + b, _mm512_sub_pd(_mm512_loadu_pd(fxs + b), fx));
+    _mm512_storeu_pd(fys + b, _mm512_sub_pd(_mm512_loadu_pd(fys + b), fy));
+  }
+}
+
 Body BenchBody() {
   const std::string path =
       std::string(ANIMAT_BENCH_DATA_DIR) + "/bench-genome.json";
@@ -182,7 +233,9 @@ struct Workload {
   std::vector<Animat> animats;
   Batch batch;
 
-  Workload() {
+  // `same_body`: every lane keeps the body's own node labels (guidance's
+  // trials); otherwise lanes after the first relabel them at random.
+  explicit Workload(bool same_body = false) {
     const Body body = BenchBody();
     const int n = body.nodes();
     std::mt19937_64 rng(5);
@@ -190,7 +243,9 @@ struct Workload {
     for (int lane = 0; lane < kLanes; ++lane) {
       std::vector<int> label(n);
       for (int i = 0; i < n; ++i) label[i] = i;
-      if (lane > 0) std::shuffle(label.begin(), label.end(), rng);
+      if (lane > 0 && !same_body) {
+        std::shuffle(label.begin(), label.end(), rng);
+      }
       Animat m;
       m.x.resize(n);
       m.v.resize(n);
@@ -217,6 +272,10 @@ struct Workload {
         p.ia.push_back(m.a[s] * kLanes + lane);
         p.ib.push_back(m.b[s] * kLanes + lane);
         p.rest.push_back(m.rest[s]);
+      }
+      if (same_body) {
+        p.na.push_back(animats[0].a[s]);
+        p.nb.push_back(animats[0].b[s]);
       }
     }
     for (int lane = 0; lane < kLanes; ++lane) {
@@ -270,13 +329,13 @@ void BM_SpringsScalar(benchmark::State& state) {
 }
 BENCHMARK(BM_SpringsScalar);
 
-template <void (*kForces)(Batch*)>
+template <void (*kForces)(Batch*), bool kSameBody = false>
 void BM_Lanes(benchmark::State& state) {
   if (!HasAvx512()) {
     state.SkipWithError("this machine has no AVX-512");
     return;
   }
-  Workload w;
+  Workload w(kSameBody);
   w.ClearForces();
   kForces(&w.batch);
   if (!w.LanesMatchScalar()) {
@@ -303,6 +362,10 @@ void BM_SpringsLanesBuffered(benchmark::State& state) {
   BM_Lanes<LaneForcesBuffered>(state);
 }
 BENCHMARK(BM_SpringsLanesBuffered);
+void BM_SpringsLanesSameBody(benchmark::State& state) {
+  BM_Lanes<LaneForcesSameBody, /*kSameBody=*/true>(state);
+}
+BENCHMARK(BM_SpringsLanesSameBody);
 
 }  // namespace
 }  // namespace animat
