@@ -167,9 +167,9 @@ __attribute__((target("avx512f"))) void LaneForcesBuffered(Batch* p) {
   }
 }
 
-// One body in every lane: spring s joins the same nodes in each, so its
-// lanes' values are one vector load apart from node to node, and one
-// vector addition per node and coordinate keeps every lane's order.
+// One body in every lane: spring s joins the same nodes in each, so a
+// node's value in the eight lanes is one vector load, and one vector
+// addition per node and coordinate keeps every lane's order.
 __attribute__((target("avx512f"))) void LaneForcesSameBody(Batch* p) {
   const __m512d zero = _mm512_setzero_pd();
   const __m512d stiffness = _mm512_set1_pd(kStiffness);
