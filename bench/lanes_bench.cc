@@ -81,8 +81,6 @@ struct Batch {
   std::vector<double> rest;  // [s * kLanes + lane]
   std::vector<double> x, y, vx, vy, fx, fy;
   std::vector<double> cx, cy;  // Buffered contributions, per spring.
-  // With one body in every lane: spring s's nodes (else empty).
-  std::vector<int> na, nb;
 };
 
 constexpr __mmask8 kAll = 0xff;
@@ -168,8 +166,9 @@ __attribute__((target("avx512f"))) void LaneForcesBuffered(Batch* p) {
 }
 
 // One body in every lane: spring s joins the same nodes in each, so a
-// node's value in the eight lanes is one vector load, and one vector
-// addition per node and coordinate keeps every lane's order.
+// node's value in the eight lanes is one vector load from lane 0's index
+// on, and one vector addition per node and coordinate keeps every lane's
+// order.
 __attribute__((target("avx512f"))) void LaneForcesSameBody(Batch* p) {
   const __m512d zero = _mm512_setzero_pd();
   const __m512d stiffness = _mm512_set1_pd(kStiffness);
@@ -181,8 +180,8 @@ __attribute__((target("avx512f"))) void LaneForcesSameBody(Batch* p) {
   double* fxs = p->fx.data();
   double* fys = p->fy.data();
   for (int s = 0; s < p->springs; ++s) {
-    const int a = p->na[s] * kLanes;
-    const int b = p->nb[s] * kLanes;
+    const int a = p->ia[s * kLanes];  // Lane 0's: node * kLanes.
+    const int b = p->ib[s * kLanes];
     const __m512d dx =
         _mm512_sub_pd(_mm512_loadu_pd(x + b), _mm512_loadu_pd(x + a));
     const __m512d dy =
@@ -272,10 +271,6 @@ struct Workload {
         p.ia.push_back(m.a[s] * kLanes + lane);
         p.ib.push_back(m.b[s] * kLanes + lane);
         p.rest.push_back(m.rest[s]);
-      }
-      if (same_body) {
-        p.na.push_back(animats[0].a[s]);
-        p.nb.push_back(animats[0].b[s]);
       }
     }
     for (int lane = 0; lane < kLanes; ++lane) {
